@@ -1,0 +1,15 @@
+"""The rule catalogue: one family per package, one module per rule.
+
+Importing this package registers every rule (explicit imports, greppable).
+"""
+
+from urdflint.rules import (  # noqa: F401
+    document,
+    gazebo,
+    geometry,
+    inertial,
+    joints,
+    meta,
+    structure,
+    transmissions,
+)

@@ -1,0 +1,29 @@
+"""The file is not well-formed XML.
+
+## What it does
+Reports the XML syntax error lxml found, with its line and column. It also
+reports files over 64 MiB, which urdflint refuses to parse.
+
+## Why is this bad?
+No URDF consumer can read the file at all. Note that yourdfpy silently
+retries such files in recover mode and may load half of the robot.
+
+## How to fix
+Fix the syntax at the reported position: an unclosed tag, a stray `<` or `&`
+(write `&lt;`/`&amp;`), mismatched quotes or a second root element.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+
+
+@rule("X001", "invalid-xml", Severity.ERROR, requires_robot=False)
+def check(doc: Document) -> Iterator[Hit]:
+    problem = doc.problem
+    if problem is not None and problem.code == "X001":
+        yield Hit(None, problem.message, line=problem.line, column=problem.column)

@@ -1,0 +1,1 @@
+"""HTTP validation service (a later issue)."""

@@ -1,0 +1,56 @@
+"""One generic runner over every rule and its fixtures (fixtures/rules/<CODE>/).
+
+``good*.urdf`` must produce no finding of the rule; ``bad*.urdf`` must produce
+exactly the ``(line, code, element)`` triples written as ``<!-- expect: ... -->``
+comments on the offending lines.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.conftest import FIXTURES
+from tests.helpers import expectations, lint_file
+from urdflint import registry
+from urdflint.finding import Severity
+
+# Rules that cannot have a file fixture: produced by the engine itself.
+EXEMPT = {"U001", "U004"}
+
+RULES = sorted(registry.load_rules().values(), key=lambda r: r.code)
+
+
+@pytest.mark.parametrize("rule", [r for r in RULES if r.code not in EXEMPT], ids=lambda r: r.code)
+def test_rule_has_fixtures(rule: registry.Rule) -> None:
+    folder = FIXTURES / "rules" / rule.code
+    assert sorted(folder.glob("good*.urdf")), f"{rule.code}: no good*.urdf in {folder}"
+    assert sorted(folder.glob("bad*.urdf")), f"{rule.code}: no bad*.urdf in {folder}"
+
+
+def _cases(prefix: str) -> list[tuple[str, object]]:
+    cases = []
+    for rule in RULES:
+        for path in sorted((FIXTURES / "rules" / rule.code).glob(f"{prefix}*.urdf")):
+            cases.append(pytest.param(rule, path, id=f"{rule.code}/{path.name}"))
+    return cases
+
+
+@pytest.mark.parametrize(("rule", "path"), _cases("good"))
+def test_good_fixture_is_clean(rule: registry.Rule, path) -> None:
+    found = [f for f in lint_file(path, select=(rule.code,)) if f.code == rule.code]
+    assert found == [], "\n".join(f"{f.line}: {f.code} {f.message}" for f in found)
+
+
+@pytest.mark.parametrize(("rule", "path"), _cases("good"))
+def test_good_fixture_has_no_errors_from_any_rule(rule: registry.Rule, path) -> None:
+    found = [f for f in lint_file(path) if f.severity is Severity.ERROR]
+    assert found == [], "\n".join(f"{f.line}: {f.code} {f.message}" for f in found)
+
+
+@pytest.mark.parametrize(("rule", "path"), _cases("bad"))
+def test_bad_fixture_matches_expectations(rule: registry.Rule, path) -> None:
+    expected = expectations(path)
+    assert expected, f"{path} has no <!-- expect: ... --> comment"
+    assert {code for _, code, _ in expected} == {rule.code}, "a bad fixture expects only its own rule"
+    found = {(f.line, f.code, f.element) for f in lint_file(path, select=(rule.code,)) if f.code == rule.code}
+    assert found == expected

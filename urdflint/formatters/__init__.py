@@ -1,0 +1,45 @@
+"""Output formats: pure functions ``render(findings, run) -> str``."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from urdflint.finding import Finding, Severity
+
+
+@dataclass(frozen=True)
+class RunInfo:
+    """What a formatter may know about the run besides the findings."""
+
+    tool_version: str
+    files: tuple[str, ...] = ()
+    models: dict[str, Any] = field(default_factory=dict)
+
+    def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
+        counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}
+        for finding in findings:
+            counts[str(finding.severity)] += 1
+        return counts
+
+
+def summary_line(findings: Sequence[Finding], run: RunInfo) -> str:
+    counts = run.summary(findings)
+    if not findings:
+        return f"urdflint: no problems in {_plural(counts['files'], 'file')}"
+    parts = [_plural(counts[str(s)], str(s)) for s in reversed(Severity) if counts[str(s)]]
+    return f"urdflint: {', '.join(parts)} in {_plural(counts['files'], 'file')}"
+
+
+def _plural(count: int, word: str) -> str:
+    return f"{count} {word}" if count == 1 else f"{count} {word}s"
+
+
+def get(name: str) -> Callable[[Sequence[Finding], RunInfo], str]:
+    from urdflint.formatters import github, json, text
+
+    return {"text": text.render, "json": json.render, "github": github.render}[name]
+
+
+NAMES = ("text", "json", "github")

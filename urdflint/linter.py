@@ -1,0 +1,143 @@
+"""Runs the rules over a document and stamps their hits into findings."""
+
+from __future__ import annotations
+
+import importlib.util
+import logging
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from functools import cache
+
+from lxml import etree
+
+from urdflint import registry, suppress
+from urdflint.config import Settings
+from urdflint.document import Document
+from urdflint.finding import Finding, Severity
+from urdflint.registry import Hit, Rule
+
+log = logging.getLogger(__name__)
+
+EXTRAS = {"pinocchio": "dynamics", "trimesh": "model", "yourdfpy": "model", "xacro": "xacro"}
+
+
+@cache
+def available(module: str) -> bool:
+    """Whether an optional module is installed (without importing it)."""
+    return importlib.util.find_spec(module) is not None
+
+
+@dataclass
+class Result:
+    """What linting one file produced."""
+
+    path: str
+    findings: list[Finding]
+    document: Document | None = None
+    skipped: dict[str, tuple[str, ...]] = field(default_factory=dict)  # code -> missing modules
+
+    @property
+    def crashed(self) -> bool:
+        return any(f.code == "U001" for f in self.findings)
+
+
+def lint_bytes(source: bytes, path: str, settings: Settings | None = None) -> Result:
+    """Lint one document given as bytes; ``path`` is only used for display."""
+    settings = settings or Settings()
+    doc = Document(path, source, targets=frozenset(settings.targets))
+    return lint_document(doc, settings)
+
+
+def lint_document(doc: Document, settings: Settings) -> Result:
+    rules = registry.load_rules()
+    enabled = settings.enabled() - settings.ignored_for(doc.path)
+    raw: list[tuple[Rule, Hit]] = []
+    skipped: dict[str, tuple[str, ...]] = {}
+    for code in sorted(enabled):
+        rule = rules[code]
+        if rule.requires_robot and not doc.ok:
+            continue
+        if code in ("U002", "U003"):
+            continue  # produced below, from the suppressions themselves
+        missing = tuple(m for m in rule.needs if not available(m))
+        if missing:
+            skipped[code] = missing
+            continue
+        raw.extend(_run(rule, doc, settings))
+
+    directives: list[suppress.Directive] = []
+    if doc.ok:
+        directives, malformed = suppress.parse(doc.robot)
+        if "U003" in enabled:
+            raw.extend((rules["U003"], Hit(m.comment, m.message)) for m in malformed)
+
+    findings: list[Finding] = []
+    for rule, hit in raw:
+        covering = [d for d in directives if d.covers(rule.code, hit.element, doc.root)] if doc.ok else []
+        if covering:
+            for directive in covering:
+                directive.used.add(rule.code)
+            continue
+        findings.append(stamp(doc, rule, hit, settings))
+    if "U002" in enabled:
+        findings.extend(_unused(doc, directives, enabled, settings))
+    findings.sort(key=Finding.sort_key)
+    return Result(doc.path, findings, doc, skipped)
+
+
+def _run(rule: Rule, doc: Document, settings: Settings) -> list[tuple[Rule, Hit]]:
+    """The rule's hits, or one U001 internal-error hit if the rule raised."""
+    try:
+        if rule.options:
+            hits = list(rule.check(doc, settings.options(rule.code)))
+        else:
+            hits = list(rule.check(doc))
+    except Exception as exc:  # a broken rule must not stop the run
+        log.debug("rule %s crashed on %s", rule.code, doc.path, exc_info=True)
+        message = f"rule {rule.code} {rule.name} crashed: {type(exc).__name__}: {exc}"
+        return [(registry.RULES["U001"], Hit(None, message, line=1))]
+    return [(rule, hit) for hit in hits]
+
+
+def _unused(
+    doc: Document, directives: list[suppress.Directive], enabled: set[str], settings: Settings
+) -> Iterable[Finding]:
+    rule = registry.RULES["U002"]
+    for directive in directives:
+        unused = sorted(code for code in directive.codes if code in enabled and code not in directive.used)
+        if unused and not directive.used:
+            what = "file" if directive.target is None else f"<{etree.QName(directive.target).localname}>"
+            hit = Hit(
+                directive.comment,
+                f"suppression of {', '.join(unused)} on this {what} matched no finding",
+                line=directive.line,
+            )
+            yield stamp(doc, rule, hit, settings)
+
+
+def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
+    """Turn a rule's hit into a finding: path, line, column, element, code, severity."""
+    element = hit.element
+    line = hit.line or (element.sourceline if element is not None else None) or (
+        doc.root.sourceline if doc.root is not None else 1
+    )
+    column = hit.column or (doc.column_of(element, line) if element is not None else 1)
+    configured = settings.severity.get(rule.code)
+    severity = configured or hit.severity or rule.severity
+    path = doc.element_path(element) if not isinstance(element, etree._Comment) else _comment_path(doc, element)
+    return Finding(
+        path=doc.path,
+        line=max(int(line), 1),
+        column=max(int(column), 1),
+        code=rule.code,
+        name=rule.name,
+        severity=Severity(severity),
+        message=hit.message,
+        element=path,
+        fix=hit.fix or rule.fix,
+    )
+
+
+def _comment_path(doc: Document, comment: etree._Element) -> str:
+    parent = comment.getparent()
+    return doc.element_path(parent) if parent is not None else "/robot"
