@@ -135,6 +135,10 @@ class Document:
         try:
             root = etree.fromstring(self.source, make_parser())
         except etree.XMLSyntaxError as exc:
+            if b"<!DOCTYPE" in self.source or b"<!ENTITY" in self.source:
+                # e.g. an entity bomb libxml2 stopped: refuse it as a DOCTYPE, not a typo
+                self.problem = self._doctype_problem()
+                return
             line, column = exc.position if exc.position else (1, 1)
             message = (exc.msg or str(exc)).strip()
             message = message.split(", line ")[0] if ", line " in message else message
@@ -145,11 +149,7 @@ class Document:
             return
         tree = root.getroottree()
         if tree.docinfo.internalDTD is not None or tree.docinfo.doctype:
-            self.problem = XmlProblem(
-                "X002",
-                "document has a DOCTYPE declaration; URDF never needs one and it is not expanded",
-                self._line_of(b"<!DOCTYPE"),
-            )
+            self.problem = self._doctype_problem()
             return
         entity = next(root.iter(etree.Entity), None)
         if entity is not None:
@@ -163,6 +163,13 @@ class Document:
             )
             return
         self.root = root
+
+    def _doctype_problem(self) -> XmlProblem:
+        return XmlProblem(
+            "X002",
+            "document has a DOCTYPE declaration; URDF never needs one and it is not expanded",
+            self._line_of(b"<!DOCTYPE"),
+        )
 
     def _line_of(self, needle: bytes) -> int:
         index = self.source.find(needle)
