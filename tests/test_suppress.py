@@ -25,7 +25,7 @@ BASE = """<?xml version="1.0"?>
 """
 
 
-def codes(file: str = "", before: str = "", inline: str = "", select=("J001", "U002", "U003")) -> list[tuple[int, str]]:
+def codes(file: str = "", before: str = "", inline: str = "", select=("J001", "J009", "U002", "U003")) -> list[tuple[int, str]]:
     text = BASE.format(file=file, before=before, inline=inline)
     return [(f.line, f.code) for f in lint_text(text, select=select)]
 
@@ -60,6 +60,10 @@ def test_file_suppression() -> None:
 
 def test_unused_suppression_is_reported() -> None:
     assert codes(before="<!-- urdflint: ignore[J009] -->") == [(5, "U002"), (6, "J001")]
+
+
+def test_suppression_of_a_rule_that_did_not_run_is_not_judged() -> None:
+    assert codes(before="<!-- urdflint: ignore[I002] -->") == [(6, "J001")]
 
 
 def test_codes_are_mandatory() -> None:

@@ -58,17 +58,18 @@ def _comments(root: etree._Element) -> list[etree._Element]:
 
 
 def _target(comment: etree._Element, root: etree._Element) -> etree._Element | None:
+    """The element a directive covers: its parent when the comment is the first thing
+    after the parent's start tag on the same line, else the next element sibling."""
+    parent = comment.getparent()
+    if parent is not None and parent.sourceline == comment.sourceline:
+        first = next((c for c in parent if not isinstance(c, etree._Comment) or c is comment), None)
+        if first is comment and not (parent.text or "").strip():
+            return parent
     for sibling in comment.itersiblings():
         if isinstance(sibling, etree._Comment):
             continue
         if isinstance(sibling.tag, str):
-            return sibling
-    parent = comment.getparent()
-    if parent is None:  # a comment before the root element
-        return root if comment in root.itersiblings(preceding=True) else None
-    first = next((c for c in parent if not isinstance(c, etree._Comment) or c is comment), None)
-    if first is comment and parent.sourceline == comment.sourceline:
-        return parent
+            return sibling  # for a comment before the root element this is the root
     return None
 
 

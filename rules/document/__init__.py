@@ -3,4 +3,10 @@
 from urdflint.rules.document import (  # noqa: F401
     x001_invalid_xml,
     x002_not_a_robot,
+    x003_missing_name,
+    x004_invalid_number,
+    x005_wrong_arity,
+    x006_obsolete_gazebo_namespace,
+    x007_unknown_element,
+    x008_unexpanded_xacro,
 )

@@ -1,1 +1,6 @@
-"""Rule family."""
+"""T: transmissions (ros_control and legacy pr2_mechanism_model)."""
+
+from urdflint.rules.transmissions import (  # noqa: F401
+    t001_transmission_undefined_joint,
+    t002_transmission_missing_interface,
+)

@@ -1,0 +1,54 @@
+"""A vector attribute has the wrong count of numbers.
+
+## What it does
+Checks that `<origin xyz/rpy>`, `<axis xyz>`, `<box size>`, `<mesh scale>` (and
+PyBullet's `<plane normal>`, `<specular rgb>`) hold exactly 3 numbers and
+`<color rgba>` exactly 4. Only the count is checked here: a value with a
+malformed token (`xyz="0,0,1"`) is reported once, by X004, even if its count
+is also wrong.
+
+## Why is this bad?
+urdfdom, and with it ROS, Gazebo's URDF import and Pinocchio, refuses the whole
+model ("Parser found 2 elements but 3 expected while parsing vector",
+"Mesh scale was specified, but could not be parsed", "Material has malformed
+color rgba values"). PyBullet accepts a single scalar mesh scale ("Scale should
+be a vector3, not single scalar. Workaround activated.") and silently uses
+zeros for a short origin or box size, so a file that works in PyBullet can fail
+everywhere else. An RGB colour without alpha
+is the classic `rgba` mistake.
+
+## How to fix
+Write all components, separated by spaces: `scale="0.001 0.001 0.001"` rather
+than `scale="0.001"`, `rgba="1 0 0 1"` rather than `rgba="1 0 0"`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+from urdflint.schema import attributes, owner, wrong_arity
+from urdflint.values import has_xacro
+
+
+@rule(
+    "X005",
+    "wrong-arity",
+    Severity.ERROR,
+    fix="Write every component, separated by spaces (3 for xyz/rpy/size/scale, 4 for rgba).",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for el, attr, kind in attributes(doc.robot):
+        value = el.get(attr) or ""
+        if kind.arity < 2 or has_xacro(value):
+            continue
+        count = wrong_arity(value, kind)
+        if count is None:
+            continue
+        numbers = "number" if count == 1 else "numbers"
+        yield Hit(
+            el,
+            f"<{el.tag}> {attr} {value!r} of {owner(el)} has {count} {numbers}, not {kind.arity}",
+        )

@@ -1,0 +1,51 @@
+"""The file declares the obsolete Player/Stage Gazebo XML namespaces.
+
+## What it does
+Reports each `xmlns:*="http://playerstage.sourceforge.net/gazebo/xmlschema/#..."`
+declaration (usually `controller`, `interface`, `sensor`, `body`, `geom`...) on
+`<robot>` or any other element.
+
+## Why is this bad?
+These namespaces belong to the Gazebo 0.x XML schema of the Player/Stage era.
+No URDF consumer reads them: urdfdom, Gazebo Classic, gz-sim (sdformat), MuJoCo,
+Drake and PyBullet all ignore them. The Gazebo "Using a URDF in Gazebo" tutorial
+lists removing them as a step of making a URDF work in Gazebo; keeping them
+suggests the file still targets a simulator that no longer exists, and a
+prefix such as `xacro` bound to one of them hides real xacro elements from
+xacro.
+
+## How to fix
+Delete the `xmlns:...="http://playerstage.sourceforge.net/..."` attributes from
+`<robot>`. Keep `xmlns:xacro="http://www.ros.org/wiki/xacro"` if the file is a
+xacro source.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from urdflint.document import Document, local_tag
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+
+PLAYERSTAGE = "playerstage.sourceforge.net/gazebo/xmlschema"
+
+
+@rule(
+    "X006",
+    "obsolete-gazebo-namespace",
+    Severity.WARNING,
+    fix="Delete the Player/Stage xmlns declaration; no current parser reads it.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for el in doc.robot.iter(etree.Element):
+        parent = el.getparent()
+        inherited = parent.nsmap if parent is not None else {}
+        for prefix, uri in sorted(el.nsmap.items(), key=lambda kv: kv[0] or ""):
+            if PLAYERSTAGE in uri and inherited.get(prefix) != uri:
+                name = f"xmlns:{prefix}" if prefix else "xmlns"
+                yield Hit(
+                    el, f"<{local_tag(el)}> declares the obsolete Gazebo namespace {name}={uri!r}"
+                )

@@ -1,0 +1,81 @@
+"""An element that URDF does not define at that place.
+
+## What it does
+Walks the document against URDF's element table (urdflint/schema.py) and
+reports elements that URDF does not define where they stand: typos
+(`<colision>`), elements one level off (`<inertia>` directly in `<link>`,
+`<inertial>` directly in `<robot>`, `<origin>` in `<link>`) and elements no
+parser reads (`<joint_properties>`, a link's `<gravity>` or `<self_filter>`,
+a joint's `<controller_gains>`). The message names the place the element
+belongs or the closest known name.
+
+Accepted extensions are not reported and not descended into: top-level
+`<gazebo>`, `<transmission>`, `<ros2_control>`, `<mujoco>`, `<sensor>` (URDF
+sensors) and `<deformable>` (PyBullet); a link's `<contact>` (PyBullet) and
+`<collision_checking>` (Pinocchio/HPP); `<capsule>` and `<plane>` geometry;
+`<specular>` in a material (PyBullet); a `<material>` inside `<collision>`
+(MuJoCo registers it as a colour). Namespaced elements (`drake:*`...) are
+extensions and skipped; `xacro:*` elements are X008's. Unknown *attributes*
+are out of scope.
+
+## Why is this bad?
+Every URDF parser looks children up by name and silently ignores the rest:
+urdfdom, Gazebo, MuJoCo, Drake, PyBullet and Pinocchio say nothing
+(urdf_parser_py alone warns "Unknown tag"). A misspelt `<colision>` leaves the
+link without collision; an `<inertia>` outside `<inertial>` leaves the link
+without mass properties, so Gazebo Classic drops it; `<joint_properties>`
+(the pre-1.0 spelling of `<dynamics>`) leaves the joint undamped. The model
+loads, and behaves differently from what the file says.
+
+## How to fix
+Rename or move the element as the message suggests. If it is data for a
+specific tool, put it in that tool's block (`<gazebo reference="...">` for
+Gazebo) or in a namespace of its own (`xmlns:mytool="..."`); otherwise delete it.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+from urdflint.schema import SPECS, describe, homes, walk
+
+# Well-known mistakes that deserve a specific hint: (context, tag) -> hint.
+HINTS = {
+    ("joint", "joint_properties"): "it is the pre-1.0 name of <dynamics>",
+    ("link", "gravity"): "URDF has no per-link gravity; Gazebo reads it from <gazebo reference>",
+}
+
+
+@rule(
+    "X007",
+    "unknown-element",
+    Severity.WARNING,
+    fix="Rename or move the element as suggested, or delete it: every URDF parser ignores it.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for visit in walk(doc.robot):
+        if visit.key is not None:
+            continue
+        el = visit.element
+        where = describe(el.getparent())
+        hint = _hint(el.tag, visit.parent_key)
+        suffix = f" ({hint})" if hint else ""
+        yield Hit(el, f"<{el.tag}> is not a URDF element of {where}{suffix}")
+
+
+def _hint(tag: str, context: str) -> str | None:
+    if (context, tag) in HINTS:
+        return HINTS[(context, tag)]
+    places = [p for p in homes(tag) if p != context]
+    if places:
+        if places == ["robot"]:
+            return "it belongs at the top level, directly inside <robot>"
+        names = [f"<{p}>" for p in places]
+        listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+        return f"it belongs inside {listed}"
+    close = difflib.get_close_matches(tag, list(SPECS[context].children), n=1, cutoff=0.75)
+    return f"did you mean <{close[0]}>?" if close else None

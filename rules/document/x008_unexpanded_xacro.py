@@ -1,0 +1,91 @@
+"""The file still contains xacro: `xacro:` elements or `${...}`/`$(...)` in values.
+
+## What it does
+Reports, once per element, every element of the xacro language (the `xacro:`
+prefix or the `http://www.ros.org/wiki/xacro` namespace) and every other
+element whose attribute values or text contain `${...}` or `$(...)`, anywhere
+in the file, `<gazebo>` blocks included. Comments are not read.
+
+Severity depends on what the leftover does:
+- **error** for everything that changes the model: includes, macro calls,
+  `xacro:if`/`unless`, `insert_block`, `element`/`attribute`, and any
+  `${...}`/`$(...)` in a value. Their content is missing or wrong as written.
+- **warning** for inert declarations (`xacro:property`, `xacro:arg`,
+  `xacro:macro` definitions) left in an otherwise expanded file: every URDF
+  parser ignores them, so the model is what it says, but the file was not
+  produced by a clean xacro run (typically hand-edited output).
+
+## Why is this bad?
+URDF parsers do not run xacro. urdfdom, Gazebo, MuJoCo, Drake, PyBullet and
+Pinocchio ignore unknown elements silently, so an unexpanded
+`<xacro:include>` or macro call simply drops the links, joints or sensors it
+would have produced, and a link inside `<xacro:if>` disappears. A value such as
+`xyz="${l/2} 0 0"` fails to parse (urdfdom refuses the model) and
+`filename="$(find pkg)/m.stl"` names no file. The model that loads is not the
+one the author wrote.
+
+## How to fix
+Run xacro and check the result: `xacro robot.urdf.xacro > robot.urdf`
+(ROS 2: `ros2 run xacro xacro ...`; or `pip install xacro`), or lint the
+`.xacro` source through urdflint's xacro support. Delete leftover
+`xacro:property`/`xacro:arg` lines from hand-edited generated files.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from urdflint.document import Document, local_tag
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+from urdflint.schema import describe, is_xacro
+from urdflint.values import has_xacro
+
+INERT = frozenset({"property", "arg", "macro"})
+EXPAND = "the file must be expanded with xacro first"
+
+
+@rule(
+    "X008",
+    "unexpanded-xacro",
+    Severity.ERROR,
+    fix="Expand the file with xacro (xacro robot.urdf.xacro > robot.urdf) and lint the output.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for el in doc.robot.iter(etree.Element):
+        if any(is_xacro(a) for a in el.iterancestors()):
+            continue  # reported with its xacro ancestor
+        if is_xacro(el):
+            yield _xacro_element(el)
+            continue
+        where = _expression(el)
+        if where is not None:
+            yield Hit(el, f"{where} holds an unexpanded xacro expression; {EXPAND}")
+
+
+def _xacro_element(el: etree._Element) -> Hit:
+    tag = local_tag(el)
+    name = el.get("name")
+    label = f"<{tag} name={name!r}>" if name is not None else f"<{tag}>"
+    if etree.QName(el).localname in INERT:
+        return Hit(
+            el,
+            f"leftover xacro declaration {label} is ignored by URDF parsers; "
+            "the file should be expanded with xacro",
+            severity=Severity.WARNING,
+        )
+    return Hit(el, f"unexpanded xacro element {label}; {EXPAND}")
+
+
+def _expression(el: etree._Element) -> str | None:
+    """Where ``el`` holds ``${..}``/``$(..)``, e.g. ``filename '$(find x)/m.stl' of ...``."""
+    for attr, value in el.attrib.items():
+        if has_xacro(value):
+            target = f"<{local_tag(el)}>" if attr == "name" else describe(el)
+            return f"{etree.QName(attr).localname}={value!r} of {target}"
+    for text in [el.text] + [c.tail for c in el]:
+        if text is not None and has_xacro(text):
+            return f"the text {text.strip()!r} of {describe(el)}"
+    return None

@@ -1,0 +1,120 @@
+"""A link is coloured only by URDF `<material><color>`, which Gazebo Classic ignores.
+
+## What it does
+Flags each link with a visual whose `<material>` carries a colour (inline `<color>` or a
+robot-level `<material>` with a `<color>`) when the link has no
+`<gazebo reference="link"><material>` and no `<gazebo reference="link"><visual><material>`.
+Only primitives and STL meshes are checked: Collada (`.dae`), OBJ and other meshes carry
+their own colours and textures, which Gazebo uses. Mid greys (r = g = b within 0.05,
+brightness 0.4-0.8) are skipped, since they look like Gazebo's default anyway. One
+finding per link, on the first coloured visual's `<material>`. The finding is a warning
+only when the file has `<gazebo>` blocks; a file without any is most likely a pure
+description (RViz, MoveIt, MuJoCo) or keeps its Gazebo extensions elsewhere (info).
+
+## Why is this bad?
+Gazebo Classic (sdformat 9) drops URDF colours when it converts the model to SDF: the
+tutorial says this "does not work in Gazebo as it adopts OGRE's material scripts", so a
+robot that is orange in RViz is plain grey in simulation. Gazebo Sim (sdformat >= 11.2,
+gazebosim/sdformat#526) converts the colour into an SDF `<material>` with
+`<diffuse>`/`<ambient>`, so under the `gz-sim` target this is only a portability note
+(info). Fixed-joint lumping does not change this: a lumped link's visuals keep the
+material of the `<gazebo>` block that names the lumped link, never that of the parent.
+
+## How to fix
+Add `<gazebo reference="link"><material>Gazebo/Orange</material></gazebo>` (a stock
+Gazebo Classic material script), or, for both simulators, an SDF material in a visual
+blob: `<gazebo reference="link"><visual><material>` with `<ambient>` and `<diffuse>`.
+Or accept the grey if the robot is never simulated in Gazebo Classic.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.gazebo_spec import blocks_for, keys_of
+from urdflint.registry import Hit, rule
+from urdflint.values import vector
+
+# Achromatic colours in this brightness band look like Gazebo's default grey anyway.
+GREY_SPREAD, GREY_LOW, GREY_HIGH = 0.05, 0.4, 0.8
+
+
+@rule(
+    "G002",
+    "urdf-color-ignored",
+    Severity.WARNING,
+    fix='Add <gazebo reference="link"><material>Gazebo/...</material></gazebo> for the link.',
+)
+def check(doc: Document) -> Iterator[Hit]:
+    classic = "gazebo-classic" in doc.targets
+    # A file without any <gazebo> element is most likely a pure description (RViz, MoveIt,
+    # MuJoCo...) or keeps its Gazebo extensions elsewhere: a note, not a warning.
+    severity = Severity.WARNING if classic and doc.gazebo else Severity.INFO
+    for link in doc.links:
+        if link.name is None or _has_gazebo_material(doc, link.name):
+            continue
+        for visual in link.visuals:
+            found = _colour(doc, visual)
+            if found is None:
+                continue
+            material, label = found
+            if classic:
+                tail = " (Gazebo Sim converts it)" if "gz-sim" in doc.targets else ""
+                message = (
+                    f"Gazebo Classic ignores the colour{label} of link {link.name!r} "
+                    f"and shows the link grey{tail}"
+                )
+            else:
+                message = (
+                    f"link {link.name!r} is coloured only by its URDF colour{label}, "
+                    "which Gazebo Sim converts but Gazebo Classic ignores"
+                )
+            yield Hit(material, message, severity=severity)
+            break
+
+
+def _has_gazebo_material(doc: Document, name: str) -> bool:
+    for gazebo in blocks_for(doc, name):
+        for el in keys_of(gazebo):
+            if el.tag == "material":
+                return True
+            if el.tag == "visual" and el.find("material") is not None:
+                return True
+    return False
+
+
+def _colour(doc: Document, visual: etree._Element) -> tuple[etree._Element, str] | None:
+    """The visual's ``<material>`` and a label for it, when it sets a colour Gazebo drops."""
+    material = visual.find("material")
+    if material is None or _own_colours(visual):
+        return None
+    name = material.get("name")
+    label = f" {name!r}" if name else ""
+    colour = material.find("color")
+    if colour is None:
+        defined = doc.material_map.get(name or "")
+        colour = defined.find("color") if defined is not None else None
+    if colour is None or _mid_grey(colour):
+        return None
+    return material, label
+
+
+def _mid_grey(colour: etree._Element) -> bool:
+    """A grey close to Gazebo's own default (nothing visibly lost), or unreadable (X004)."""
+    rgba = vector(colour, "rgba", 4)
+    if rgba is None:
+        return True
+    r, g, b, _ = rgba
+    return max(r, g, b) - min(r, g, b) <= GREY_SPREAD and GREY_LOW <= (r + g + b) / 3 <= GREY_HIGH
+
+
+def _own_colours(visual: etree._Element) -> bool:
+    mesh = visual.find("geometry/mesh")
+    if mesh is None:
+        return False
+    filename = (mesh.get("filename") or "").lower()
+    return not filename.endswith(".stl")

@@ -1,0 +1,50 @@
+"""A `<gazebo>` block uses a key that sdformat deprecated or no longer reads.
+
+## What it does
+Flags these children of `<gazebo>` blocks:
+- `<cfmDamping>`: still read, but sdformat warns "cfmDamping is being deprecated by
+  implicitSpringDamper";
+- `<stopKp>`, `<stopKd>`, `<initialJointPosition>`: read by the Gazebo 1.x converter and
+  dropped when sdformat was rewritten; today they are copied verbatim into the SDF
+  `<joint>`, where SDF does not define them;
+- `<canonicalBody>`: read and explicitly ignored ("do nothing with canonicalBody").
+
+`<turnGravityOff>` is not flagged: it is still documented and converted (an SDF
+`<gravity>` blob with the opposite value is the alternative).
+
+## Why is this bad?
+A removed key does nothing, silently: `<stopKp>1e6</stopKp>` leaves the joint stops at
+ODE's defaults (ERP 0.2, CFM 0), so the model does not behave as its author tuned it.
+A deprecated key works today and prints a warning on every spawn.
+
+## How to fix
+Replace `<cfmDamping>` by `<implicitSpringDamper>`; express joint-stop stiffness and
+damping with `<stopErp>` and `<stopCfm>`; delete `<initialJointPosition>` and
+`<canonicalBody>`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.gazebo_spec import LEGACY, describe, keys_of
+from urdflint.registry import Hit, rule
+
+
+@rule(
+    "G005",
+    "deprecated-gazebo-element",
+    Severity.WARNING,
+    fix="Replace the key by its current equivalent, or remove it.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for gazebo in doc.gazebo:
+        owner = describe(doc, gazebo)
+        for el in keys_of(gazebo):
+            legacy = LEGACY.get(str(el.tag))
+            if legacy is None:
+                continue
+            state, advice = legacy
+            yield Hit(el, f"<{el.tag}> of {owner} is {state}", fix=advice)

@@ -1,0 +1,45 @@
+"""A joint has a `<calibration>` element, which the simulators ignore.
+
+## What it does
+Reports every `<calibration>` inside a `<joint>`.
+
+## Why is this bad?
+`<calibration>` (the `rising`/`falling` reference positions) is read by urdfdom
+and used only by robot-specific calibration controllers, such as the PR2's.
+The Gazebo tutorial "Using a URDF in Gazebo" states that `<calibration>` is
+ignored; sdformat's URDF converter drops it for Gazebo Classic and Gazebo Sim,
+MuJoCo skips it, and Drake warns "The tag 'calibration' found as a child of
+'joint' is currently unsupported and will be ignored". It does nothing in
+simulation, so it should not be mistaken for a zero offset that is applied.
+
+This finding is informational.
+
+## How to fix
+Keep it if your real robot's calibration controller reads it. Otherwise delete
+it. To silence the finding for a robot that needs it, suppress J002 in the
+configuration.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint import joints as J
+from urdflint.document import Document, children
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+
+
+@rule(
+    "J002",
+    "calibration-ignored",
+    Severity.INFO,
+    fix="Delete <calibration> unless a calibration controller on the real robot reads it.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for joint in doc.joints:
+        for el in children(joint.element, "calibration"):
+            yield Hit(
+                el,
+                f"{J.label(joint)} has a <calibration>, which Gazebo, MuJoCo and Drake ignore",
+            )

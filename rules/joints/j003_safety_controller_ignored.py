@@ -1,0 +1,49 @@
+"""A joint has a `<safety_controller>`, which the simulators ignore.
+
+## What it does
+Reports every `<safety_controller>` inside a `<joint>`.
+
+## Why is this bad?
+`<safety_controller>` (soft limits `soft_lower_limit`/`soft_upper_limit` and the
+gains `k_position`/`k_velocity`) is read by urdfdom and used by ROS only: ros_control's
+`joint_limits_interface` soft-limit handles and the PR2 controllers, and MoveIt
+takes the soft limits as the joint's bounds when they are present. The Gazebo
+tutorial "Using a URDF in Gazebo" states that `<safety_controller>` is ignored.
+sdformat's URDF converter drops it, so Gazebo Classic and Gazebo Sim enforce only
+`<limit>`. MuJoCo skips it, and Drake warns "The tag 'safety_controller' ... will
+be ignored". A simulated robot can therefore go past soft limits that the real
+robot's controllers respect.
+
+This finding is informational.
+
+## How to fix
+Nothing needs to change if the soft limits are for the real robot's controllers.
+If the simulated joint must also stop at the soft limits, narrow `<limit
+lower/upper>` to match them. Suppress J003 in the configuration when the
+difference is intended.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint import joints as J
+from urdflint.document import Document, children
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+
+
+@rule(
+    "J003",
+    "safety-controller-ignored",
+    Severity.INFO,
+    fix="If simulation must respect the soft limits, narrow <limit lower/upper> to them.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for joint in doc.joints:
+        for el in children(joint.element, "safety_controller"):
+            yield Hit(
+                el,
+                f"{J.label(joint)} has a <safety_controller>, which Gazebo, MuJoCo and Drake "
+                "ignore; only ROS controllers and MoveIt use its soft limits",
+            )

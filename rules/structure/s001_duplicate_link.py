@@ -1,0 +1,38 @@
+"""Two `<link>` elements share a name.
+
+## What it does
+Reports every `<link>` whose `name` was already used by an earlier link, and
+names the line of the first definition.
+
+## Why is this bad?
+urdfdom (and with it ROS, `check_urdf`, sdformat/Gazebo and Pinocchio) refuses
+the whole model with "link 'X' is not unique". Parsers that accept it keep
+only one of the two definitions, so joints, `<gazebo reference>` blocks and
+SRDF entries may end up attached to a body you did not mean.
+
+## How to fix
+Rename one of the links (and the joints that refer to it), or delete the
+copy. Duplicates usually come from including a xacro macro twice with the
+same `prefix`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+from urdflint.structure import q
+
+
+@rule("S001", "duplicate-link", Severity.ERROR, fix="Rename or remove one of the two links.")
+def check(doc: Document) -> Iterator[Hit]:
+    for link in doc.links:
+        first = doc.link_map.get(link.name) if link.name is not None else None
+        if first is not None and first is not link:
+            yield Hit(
+                link.element,
+                f"link {q(link.name)} is defined again "
+                f"(first defined on line {first.element.sourceline})",
+            )

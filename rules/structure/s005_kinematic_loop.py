@@ -1,0 +1,61 @@
+"""A link has two parent joints, or joints form a closed loop.
+
+## What it does
+Reports a joint whose child link is already the child of an earlier joint
+(naming both joints), and a directed cycle of joints (a link that is its own
+ancestor, including a joint whose parent and child are the same link). A
+cycle is reported once, on its joint that comes last in the file, unless one
+of its joints was already reported as a second parent.
+
+## Why is this bad?
+URDF describes a tree. urdfdom does not notice a second parent: it silently
+overwrites the first one, so ROS, RViz and MoveIt see a different robot from
+the file. PyBullet crashes with a segmentation fault and yourdfpy with a
+`ValueError`; Drake ("form one or more loops"), MuJoCo ("multiple parents"),
+Pinocchio and sdformat/Gazebo refuse the model. A cycle with no root at all
+makes urdfdom refuse it too ("No root link found").
+
+## How to fix
+Keep one joint per child link. A real closed chain (a four-bar linkage, a
+parallel gripper) has to be cut open in URDF: model one branch with joints and
+close the loop in the simulator (a `<mimic>` element, a Gazebo `<joint>` inside
+`<gazebo>`, or an SDF model).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+from urdflint.structure import q
+
+
+@rule("S005", "kinematic-loop", Severity.ERROR)
+def check(doc: Document) -> Iterator[Hit]:
+    graph = doc.graph
+    reported: set[int] = set()
+    for link, parents in graph.parent_joints.items():
+        for joint in parents[1:]:
+            reported.add(id(joint.element))
+            yield Hit(
+                joint.element,
+                f"link {link!r} is the child of both joint {q(parents[0].name)} "
+                f"and joint {q(joint.name)}",
+                fix="Keep one parent joint per link; close real loops in the simulator.",
+            )
+    order = {id(joint.element): index for index, joint in enumerate(doc.joints)}
+    for cycle in graph.cycles():
+        if any(id(joint.element) in reported for joint in cycle):
+            continue
+        last = max(cycle, key=lambda joint: order.get(id(joint.element), -1))
+        reported.add(id(last.element))
+        if len(cycle) == 1:
+            message = f"joint {q(last.name)} connects link {last.child!r} to itself"
+        else:
+            names = " -> ".join(repr(joint.name) for joint in cycle)
+            message = (
+                f"joints {names} form a closed loop: link {cycle[0].parent!r} is its own ancestor"
+            )
+        yield Hit(last.element, message, fix="Remove or redirect one joint of the loop.")
