@@ -61,6 +61,8 @@ def check(doc: Document) -> Iterator[Hit]:
         if visit.key is not None:
             continue
         el = visit.element
+        if visit.parent_key == "geometry":
+            continue  # an unknown shape is C003 invalid-geometry's (an error there)
         where = describe(el.getparent())
         hint = _hint(el.tag, visit.parent_key)
         suffix = f" ({hint})" if hint else ""

@@ -14,6 +14,12 @@ Severity depends on what the leftover does:
   `xacro:macro` definitions) left in an otherwise expanded file: every URDF
   parser ignores them, so the model is what it says, but the file was not
   produced by a clean xacro run (typically hand-edited output).
+- **one warning per file** when expressions appear only in names and
+  references (`name`, `link`, `joint`, `reference`), as in a `.urdf` template
+  such as `name="${namespace}base_link"` that a launch file runs through xacro:
+  loaded as it is, the model is consistent but every frame is literally named
+  `${namespace}base_link`. The finding sits on the first such element and
+  counts the others.
 
 ## Why is this bad?
 URDF parsers do not run xacro. urdfdom, Gazebo, MuJoCo, Drake, PyBullet and
@@ -44,6 +50,7 @@ from urdflint.schema import describe, is_xacro
 from urdflint.values import has_xacro
 
 INERT = frozenset({"property", "arg", "macro"})
+NAME_ATTRS = frozenset({"name", "link", "joint", "reference"})
 EXPAND = "the file must be expanded with xacro first"
 
 
@@ -54,6 +61,7 @@ EXPAND = "the file must be expanded with xacro first"
     fix="Expand the file with xacro (xacro robot.urdf.xacro > robot.urdf) and lint the output.",
 )
 def check(doc: Document) -> Iterator[Hit]:
+    in_names: list[tuple[etree._Element, str]] = []
     for el in doc.robot.iter(etree.Element):
         if any(is_xacro(a) for a in el.iterancestors()):
             continue  # reported with its xacro ancestor
@@ -61,8 +69,30 @@ def check(doc: Document) -> Iterator[Hit]:
             yield _xacro_element(el)
             continue
         where = _expression(el)
-        if where is not None:
+        if where is None:
+            continue
+        if _only_in_names(el):
+            in_names.append((el, where))
+        else:
             yield Hit(el, f"{where} holds an unexpanded xacro expression; {EXPAND}")
+    if in_names:
+        first, where = in_names[0]
+        others = len(in_names) - 1
+        more = f" (and {others} more name{'s' if others != 1 else ''})" if others else ""
+        yield Hit(
+            first,
+            f"{where} holds an unexpanded xacro expression{more}; as URDF the frames are named "
+            f"literally, so {EXPAND}",
+            severity=Severity.WARNING,
+        )
+
+
+def _only_in_names(el: etree._Element) -> bool:
+    """True when every ``${..}``/``$(..)`` of ``el`` sits in a name or reference."""
+    texts = [el.text, *(c.tail for c in el)]
+    if any(t is not None and has_xacro(t) for t in texts):
+        return False
+    return all(etree.QName(a).localname in NAME_ATTRS for a, v in el.attrib.items() if has_xacro(v))
 
 
 def _xacro_element(el: etree._Element) -> Hit:
