@@ -397,8 +397,11 @@ def massless_verdict(doc: Document, name: str) -> Verdict | None:
         if not below or name != graph.root:
             return None
         return Verdict(Severity.WARNING, f"{label} drops it and with it the whole model")
-    lost = f" and the {len(below)} link{'s' if len(below) > 1 else ''} below it" if below else ""
-    consequence = f"{label} drops it, its joint '{joint.name}'{lost}"
+    if below:
+        lost = f"the {len(below)} link{'s' if len(below) > 1 else ''} below it"
+        consequence = f"{label} drops it, its joint '{joint.name}' and {lost}"
+    else:
+        consequence = f"{label} drops it and its joint '{joint.name}'"
     moving = joint.type in MOVABLE or any(
         j.type in MOVABLE for n in below for j in graph.parent_joints.get(n, [])
     )
