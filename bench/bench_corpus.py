@@ -47,7 +47,9 @@ def best_of(repeat: int, fn) -> tuple[float, float]:
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("paths", nargs="*")
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--json", action="store_true", help="print the figures as JSON too")
@@ -81,50 +83,91 @@ def main() -> int:
     lint_min, lint_med = best_of(args.repeat, lint_all)
 
     results: dict[str, object] = {
-        "files": len(files), "bytes": size, "rules": len(registry.RULES), "findings": findings,
-        "lxml_parse_s": parse_min, "urdflint_s": lint_min, "ratio_vs_lxml": lint_min / parse_min,
+        "files": len(files),
+        "bytes": size,
+        "rules": len(registry.RULES),
+        "findings": findings,
+        "lxml_parse_s": parse_min,
+        "urdflint_s": lint_min,
+        "ratio_vs_lxml": lint_min / parse_min,
     }
-    print(f"{len(files)} files, {size / 1e6:.2f} MB, {len(registry.RULES)} rules, {findings} findings")
-    print(f"bare lxml parse (hardened parser)  min {parse_min * 1e3:8.1f} ms   median {parse_med * 1e3:8.1f} ms")
-    print(f"urdflint, all rules, one process  min {lint_min * 1e3:8.1f} ms   median {lint_med * 1e3:8.1f} ms")
+    print(
+        f"{len(files)} files, {size / 1e6:.2f} MB, {len(registry.RULES)} rules, {findings} findings"
+    )
+    print(
+        f"bare lxml parse (hardened parser)  min {parse_min * 1e3:8.1f} ms   median {parse_med * 1e3:8.1f} ms"
+    )
+    print(
+        f"urdflint, all rules, one process  min {lint_min * 1e3:8.1f} ms   median {lint_med * 1e3:8.1f} ms"
+    )
     print(f"  ratio urdflint / lxml parse: {lint_min / parse_min:.1f}x")
 
     check_urdf = shutil.which("check_urdf")
     if check_urdf:
+
         def run_check_urdf() -> None:
             for name, _ in blobs:
                 subprocess.run([check_urdf, name], capture_output=True, check=False)
 
         cu_min, cu_med = best_of(max(1, args.repeat // 2), run_check_urdf)
         results.update(check_urdf_s=cu_min, ratio_vs_check_urdf=lint_min / cu_min)
-        print(f"check_urdf, one process per file   min {cu_min * 1e3:8.1f} ms   median {cu_med * 1e3:8.1f} ms")
+        print(
+            f"check_urdf, one process per file   min {cu_min * 1e3:8.1f} ms   median {cu_med * 1e3:8.1f} ms"
+        )
         print(f"  ratio urdflint (in-process) / check_urdf: {lint_min / cu_min:.2f}x")
-        single_min, _ = best_of(args.repeat, lambda: [
-            subprocess.run([sys.executable, "-m", "urdflint", "check", "--format", "json", "--exit-zero", name],
-                           capture_output=True, check=False) for name, _ in blobs[:8]])
+        single_min, _ = best_of(
+            args.repeat,
+            lambda: [
+                subprocess.run(
+                    [
+                        sys.executable,
+                        "-m",
+                        "urdflint",
+                        "check",
+                        "--format",
+                        "json",
+                        "--exit-zero",
+                        name,
+                    ],
+                    capture_output=True,
+                    check=False,
+                )
+                for name, _ in blobs[:8]
+            ],
+        )
         per_file = single_min / min(8, len(blobs))
         cu_per_file = cu_min / len(blobs)
         results.update(urdflint_cli_per_file_s=per_file, check_urdf_per_file_s=cu_per_file)
-        print(f"  one CLI process per file: urdflint {per_file * 1e3:.0f} ms vs check_urdf {cu_per_file * 1e3:.1f} ms "
-              f"({per_file / cu_per_file:.0f}x; urdflint's cost is the Python interpreter start)")
+        print(
+            f"  one CLI process per file: urdflint {per_file * 1e3:.0f} ms vs check_urdf {cu_per_file * 1e3:.1f} ms "
+            f"({per_file / cu_per_file:.0f}x; urdflint's cost is the Python interpreter start)"
+        )
     else:
         print("check_urdf not installed (apt-get install liburdfdom-tools): skipped")
 
     def cold(cmd: list[str]) -> float:
-        return best_of(args.repeat, lambda: subprocess.run(cmd, capture_output=True, check=False))[0]
+        return best_of(args.repeat, lambda: subprocess.run(cmd, capture_output=True, check=False))[
+            0
+        ]
 
     cold_lxml = cold([sys.executable, "-c", "import lxml.etree"])
     cold_lint = cold([sys.executable, "-m", "urdflint", "check", "--exit-zero", str(SMALL)])
-    results.update(cold_import_lxml_s=cold_lxml, cold_urdflint_s=cold_lint, cold_ratio=cold_lint / cold_lxml)
-    print(f"cold start: python -c 'import lxml.etree' {cold_lxml * 1e3:.0f} ms; "
-          f"urdflint check {SMALL.name} {cold_lint * 1e3:.0f} ms  ({cold_lint / cold_lxml:.2f}x)")
+    results.update(
+        cold_import_lxml_s=cold_lxml, cold_urdflint_s=cold_lint, cold_ratio=cold_lint / cold_lxml
+    )
+    print(
+        f"cold start: python -c 'import lxml.etree' {cold_lxml * 1e3:.0f} ms; "
+        f"urdflint check {SMALL.name} {cold_lint * 1e3:.0f} ms  ({cold_lint / cold_lxml:.2f}x)"
+    )
 
     probe = (
         "import sys; from urdflint import linter; "
         f"linter.lint_bytes(open({str(files[0])!r}, 'rb').read(), 'x'); "
         f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))"
     )
-    heavy = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout.strip()
+    heavy = subprocess.run(
+        [sys.executable, "-c", probe], capture_output=True, text=True, check=True
+    ).stdout.strip()
     results["heavy_modules_imported"] = heavy.split(",") if heavy else []
     print(f"heavy modules imported by a static lint: {heavy or 'none'}")
     if args.json:

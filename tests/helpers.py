@@ -11,7 +11,9 @@ from urdflint.finding import Finding
 EXPECT_RE = re.compile(r"<!--\s*expect:\s*(.*?)\s*-->")
 
 
-def lint_file(path: Path, select: tuple[str, ...] | None = None, settings: config.Settings | None = None) -> list[Finding]:
+def lint_file(
+    path: Path, select: tuple[str, ...] | None = None, settings: config.Settings | None = None
+) -> list[Finding]:
     settings = settings or fixture_settings(path)
     if select is not None:
         settings = config.Settings(**{**settings.__dict__, "select": select})

@@ -61,14 +61,26 @@ def test_text_format_is_path_line_col_severity_code_name_message(capsys, no_limi
 
 
 def test_json_envelope(capsys, no_limit: Path) -> None:
-    code, out, _ = run(capsys, "check", "--format", "json", "--select", "J001", str(no_limit), str(GOOD))
+    code, out, _ = run(
+        capsys, "check", "--format", "json", "--select", "J001", str(no_limit), str(GOOD)
+    )
     assert code == 1
     data = json.loads(out)
     assert data["version"] == 1
     assert data["tool"]["name"] == "urdflint" and data["tool"]["version"]
     assert data["summary"] == {"files": 2, "error": 1, "warning": 0, "info": 0}
     (finding,) = data["findings"]
-    assert set(finding) == {"path", "line", "column", "code", "name", "severity", "message", "element", "fix"}
+    assert set(finding) == {
+        "path",
+        "line",
+        "column",
+        "code",
+        "name",
+        "severity",
+        "message",
+        "element",
+        "fix",
+    }
     assert finding["element"] == "/robot/joint[@name='shoulder']"
     assert finding["severity"] == "error" and finding["line"] == 4
     assert finding["fix"]
@@ -80,7 +92,9 @@ def test_github_format_and_auto_detection(capsys, no_limit: Path, monkeypatch) -
     assert code == 1
     lines = out.splitlines()
     assert lines[0] == f"::group::{no_limit}"
-    assert lines[1].startswith(f"::error file={no_limit},line=4,endLine=4,col=3,title=urdflint (J001)::J001 ")
+    assert lines[1].startswith(
+        f"::error file={no_limit},line=4,endLine=4,col=3,title=urdflint (J001)::J001 "
+    )
     assert lines[2] == "::endgroup::"
 
 
@@ -88,7 +102,9 @@ def test_github_escapes_property_and_message_data() -> None:
     from urdflint.finding import Finding, Severity
     from urdflint.formatters import RunInfo, github
 
-    finding = Finding("a,b:c.urdf", 2, 1, "X001", "invalid-xml", Severity.ERROR, "50% bad\nline", "/robot")
+    finding = Finding(
+        "a,b:c.urdf", 2, 1, "X001", "invalid-xml", Severity.ERROR, "50% bad\nline", "/robot"
+    )
     out = github.render([finding], RunInfo("0", ("a,b:c.urdf",)))
     assert "file=a%2Cb%3Ac.urdf," in out
     assert "::X001 invalid-xml: 50%25 bad%0Aline" in out
@@ -121,10 +137,17 @@ def test_select_and_ignore_take_codes_names_and_families(capsys, no_limit: Path)
 
 def test_fail_on_threshold(capsys, tmp_path: Path) -> None:
     path = tmp_path / "calib.urdf"
-    path.write_text(GOOD.read_text().replace('<axis xyz="0 0 1"/>', '<axis xyz="0 0 1"/><calibration rising="0.1"/>'))
+    path.write_text(
+        GOOD.read_text().replace(
+            '<axis xyz="0 0 1"/>', '<axis xyz="0 0 1"/><calibration rising="0.1"/>'
+        )
+    )
     assert run(capsys, "check", "--select", "J002", str(path))[0] == 0
     assert run(capsys, "check", "--select", "J002", "--fail-on", "info", str(path))[0] == 1
-    assert run(capsys, "check", "--select", "J002", "--fail-on", "info", "--exit-zero", str(path))[0] == 0
+    assert (
+        run(capsys, "check", "--select", "J002", "--fail-on", "info", "--exit-zero", str(path))[0]
+        == 0
+    )
 
 
 def test_directory_is_searched_recursively_for_urdf(capsys, tmp_path: Path) -> None:
@@ -148,7 +171,10 @@ def test_empty_directory_exits_2(capsys, tmp_path: Path) -> None:
 def test_stdin(no_limit: Path) -> None:
     proc = subprocess.run(
         [sys.executable, "-m", "urdflint", "check", "--format", "text", "--select", "J001", "-"],
-        input=NO_LIMIT, capture_output=True, text=True, check=False,
+        input=NO_LIMIT,
+        capture_output=True,
+        text=True,
+        check=False,
     )
     assert proc.returncode == 1
     assert proc.stdout.startswith("<stdin>:4:3: error J001")
@@ -161,7 +187,14 @@ def test_rules_and_explain(capsys) -> None:
     assert code == 0 and any(r["code"] == "J001" for r in json.loads(out)["rules"])
     code, out, _ = run(capsys, "explain", "I005")
     assert code == 0
-    for part in ("I005 ", "## What it does", "## Why is this bad?", "## How to fix", "## Bad example", "## Good example"):
+    for part in (
+        "I005 ",
+        "## What it does",
+        "## Why is this bad?",
+        "## How to fix",
+        "## Bad example",
+        "## Good example",
+    ):
         assert part in out
     assert run(capsys, "explain", "triangle-inequality")[0] == 0
     code, _, err = run(capsys, "explain", "Z999")
@@ -176,7 +209,9 @@ def test_internal_error_becomes_u001_and_exit_2(capsys, no_limit: Path, monkeypa
         raise RuntimeError("kaboom")
         yield  # pragma: no cover
 
-    monkeypatch.setitem(registry.RULES, "Z900", registry.Rule("Z900", "test-crash", Severity.ERROR, boom, "x"))
+    monkeypatch.setitem(
+        registry.RULES, "Z900", registry.Rule("Z900", "test-crash", Severity.ERROR, boom, "x")
+    )
     monkeypatch.setitem(registry.FAMILIES, "Z", "test")
     code, out, _ = run(capsys, "check", "--format", "json", "--select", "Z900,J001", str(no_limit))
     data = json.loads(out)
@@ -187,7 +222,9 @@ def test_internal_error_becomes_u001_and_exit_2(capsys, no_limit: Path, monkeypa
     assert "Z900" in crash["message"] and "kaboom" in crash["message"]
 
 
-def test_missing_extra_is_skipped_with_one_note(capsys, no_limit: Path, tmp_path: Path, monkeypatch) -> None:
+def test_missing_extra_is_skipped_with_one_note(
+    capsys, no_limit: Path, tmp_path: Path, monkeypatch
+) -> None:
     from urdflint import registry
     from urdflint.finding import Severity
 
@@ -195,17 +232,22 @@ def test_missing_extra_is_skipped_with_one_note(capsys, no_limit: Path, tmp_path
         yield from ()
 
     monkeypatch.setitem(
-        registry.RULES, "Z901",
-        registry.Rule("Z901", "test-needs", Severity.ERROR, needs_pin, "x", needs=("urdflint_no_such_module",)),
+        registry.RULES,
+        "Z901",
+        registry.Rule(
+            "Z901", "test-needs", Severity.ERROR, needs_pin, "x", needs=("urdflint_no_such_module",)
+        ),
     )
     other = tmp_path / "second.urdf"
     other.write_text(NO_LIMIT)
-    code, out, _ = run(capsys, "check", "--format", "json", str(no_limit), str(other))
+    _, out, _ = run(capsys, "check", "--format", "json", str(no_limit), str(other))
     notes = [f for f in json.loads(out)["findings"] if f["code"] == "U004"]
     assert len(notes) == 1
     assert "Z901" in notes[0]["message"] and "urdflint_no_such_module" in notes[0]["message"]
 
 
 def test_python_dash_m_works() -> None:
-    proc = subprocess.run([sys.executable, "-m", "urdflint", "--version"], capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "urdflint", "--version"], capture_output=True, text=True
+    )
     assert proc.returncode == 0 and proc.stdout.startswith("urdflint ")

@@ -44,7 +44,9 @@ def test_nearest_config_wins(capsys, project: Path) -> None:
 
 
 def test_severity_override_and_off(capsys, project: Path) -> None:
-    (project / "urdflint.toml").write_text('[severity]\nJ001 = "warning"\nmissing-joint-origin = "off"\n')
+    (project / "urdflint.toml").write_text(
+        '[severity]\nJ001 = "warning"\nmissing-joint-origin = "off"\n'
+    )
     code, found = findings(capsys, str(project))
     j001 = [f for f in found if f["code"] == "J001"]
     assert code == 0 and j001 and j001[0]["severity"] == "warning"
@@ -90,11 +92,13 @@ def test_targets_from_config(capsys, project: Path) -> None:
         ('targets = ["webots"]\n', "webots"),
         ('[severity]\nJ001 = "fatal"\n', "severity.J001"),
         ('[severity]\nZ001 = "error"\n', "Z001"),
-        ('[rules.I007]\nmax-ratoi = 3\n', "rules.I007.max-ratoi"),
+        ("[rules.I007]\nmax-ratoi = 3\n", "rules.I007.max-ratoi"),
         ("this is = not toml", "invalid TOML"),
     ],
 )
-def test_invalid_config_exits_2_naming_the_key(capsys, project: Path, text: str, needle: str) -> None:
+def test_invalid_config_exits_2_naming_the_key(
+    capsys, project: Path, text: str, needle: str
+) -> None:
     (project / "urdflint.toml").write_text(text)
     code, out, err = run(capsys, "check", str(project))
     assert code == 2

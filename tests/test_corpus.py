@@ -53,7 +53,9 @@ REVIEWED_ERRORS: dict[str, set[str]] = {
 def report() -> dict:
     proc = subprocess.run(
         [sys.executable, "-m", "urdflint", "check", "--format", "json", str(CORPUS)],
-        capture_output=True, text=True, timeout=600,
+        capture_output=True,
+        text=True,
+        timeout=600,
     )
     assert proc.returncode in (0, 1), proc.stderr
     assert proc.stderr == ""
@@ -62,7 +64,9 @@ def report() -> dict:
 
 def test_every_robot_is_checked_without_internal_errors(report: dict) -> None:
     assert report["summary"]["files"] == len(corpus_models()) == 36
-    assert not [f for f in report["findings"] if f["code"].startswith("U00") and f["code"] != "U002"]
+    assert not [
+        f for f in report["findings"] if f["code"].startswith("U00") and f["code"] != "U002"
+    ]
 
 
 def test_findings_are_well_formed(report: dict) -> None:
@@ -75,5 +79,9 @@ def test_findings_are_well_formed(report: dict) -> None:
 @pytest.mark.parametrize("model", corpus_models(), ids=lambda p: p.parent.name)
 def test_only_reviewed_errors(report: dict, model) -> None:
     robot = model.parent.name
-    errors = {f["code"] for f in report["findings"] if f["path"] == str(model) and f["severity"] == "error"}
+    errors = {
+        f["code"]
+        for f in report["findings"]
+        if f["path"] == str(model) and f["severity"] == "error"
+    }
     assert errors == REVIEWED_ERRORS.get(robot, set()), f"{robot}: review these error codes"

@@ -45,8 +45,16 @@ def test_doctype_documents_are_refused_not_expanded(text: str) -> None:
 
 @pytest.mark.parametrize(
     "text",
-    ["", "   ", "\x00\x01garbage", "<robot", "<robot name='a'><link></robot>", "<?xml version='1.0' encoding='klingon'?><robot/>",
-     "<robot name='a'/><robot name='b'/>", "\ufeff<robot name='x'><link name='a'/></robot>"],
+    [
+        "",
+        "   ",
+        "\x00\x01garbage",
+        "<robot",
+        "<robot name='a'><link></robot>",
+        "<?xml version='1.0' encoding='klingon'?><robot/>",
+        "<robot name='a'/><robot name='b'/>",
+        "\ufeff<robot name='x'><link name='a'/></robot>",
+    ],
 )
 def test_malformed_input_is_one_x001_finding(text: str) -> None:
     found = lint_text(text)
@@ -71,8 +79,11 @@ def test_huge_file_is_refused_without_parsing(tmp_path: Path) -> None:
 def test_binary_garbage_file_from_cli(tmp_path: Path) -> None:
     path = tmp_path / "zip.urdf"
     path.write_bytes(b"PK\x03\x04" + bytes(range(256)) * 10)
-    proc = subprocess.run([sys.executable, "-m", "urdflint", "check", "--format", "text", str(path)],
-                          capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "urdflint", "check", "--format", "text", str(path)],
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 1
     assert "X001" in proc.stdout and "Traceback" not in proc.stderr
 
@@ -81,7 +92,9 @@ def test_unreadable_file_is_one_line_error(tmp_path: Path) -> None:
     path = tmp_path / "secret.urdf"
     path.write_text("<robot name='r'/>")
     path.chmod(0)
-    proc = subprocess.run([sys.executable, "-m", "urdflint", "check", str(path)], capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "urdflint", "check", str(path)], capture_output=True, text=True
+    )
     path.chmod(0o644)
     if proc.returncode == 0:  # running as root: permissions do not apply
         pytest.skip("file permissions are not enforced for this user")

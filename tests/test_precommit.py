@@ -53,7 +53,11 @@ def test_try_repo_fails_on_broken_and_passes_on_clean(tmp_path: Path) -> None:
     def run(name: str) -> subprocess.CompletedProcess[str]:
         return subprocess.run(
             [PRE_COMMIT, "try-repo", str(ROOT), "urdflint", "--files", name],
-            cwd=repo, env=env, capture_output=True, text=True, timeout=900,
+            cwd=repo,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=900,
         )
 
     broken = run("broken.urdf")

@@ -7,6 +7,7 @@ import pkgutil
 import re
 
 import urdflint.rules
+
 from tests.conftest import ROOT
 from urdflint import docs, registry
 
@@ -57,4 +58,6 @@ def test_readme_rule_table_is_current() -> None:
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     match = re.search(r"<!-- rules:start -->\n(.*?)<!-- rules:end -->", readme, re.S)
     assert match, "README.md lacks the <!-- rules:start --> / <!-- rules:end --> markers"
-    assert match.group(1) == docs.rule_table(), "README rule table is stale: run python -m urdflint.docs"
+    assert match.group(1) == docs.rule_table(), (
+        "README rule table is stale: run python -m urdflint.docs"
+    )

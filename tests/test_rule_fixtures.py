@@ -51,6 +51,12 @@ def test_good_fixture_has_no_errors_from_any_rule(rule: registry.Rule, path) -> 
 def test_bad_fixture_matches_expectations(rule: registry.Rule, path) -> None:
     expected = expectations(path)
     assert expected, f"{path} has no <!-- expect: ... --> comment"
-    assert {code for _, code, _ in expected} == {rule.code}, "a bad fixture expects only its own rule"
-    found = {(f.line, f.code, f.element) for f in lint_file(path, select=(rule.code,)) if f.code == rule.code}
+    assert {code for _, code, _ in expected} == {rule.code}, (
+        "a bad fixture expects only its own rule"
+    )
+    found = {
+        (f.line, f.code, f.element)
+        for f in lint_file(path, select=(rule.code,))
+        if f.code == rule.code
+    }
     assert found == expected

@@ -25,7 +25,9 @@ BASE = """<?xml version="1.0"?>
 """
 
 
-def codes(file: str = "", before: str = "", inline: str = "", select=("J001", "J009", "U002", "U003")) -> list[tuple[int, str]]:
+def codes(
+    file: str = "", before: str = "", inline: str = "", select=("J001", "J009", "U002", "U003")
+) -> list[tuple[int, str]]:
     text = BASE.format(file=file, before=before, inline=inline)
     return [(f.line, f.code) for f in lint_text(text, select=select)]
 

@@ -13,6 +13,7 @@ import sys
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 from urdflint import __version__, config, formatters, registry, targets
 from urdflint.finding import Finding, Severity
@@ -41,23 +42,54 @@ def build_parser() -> argparse.ArgumentParser:
     check = sub.add_parser("check", help="lint files and folders (folders: every *.urdf below)")
     check.add_argument("paths", nargs="+", metavar="PATH", help="file, folder, or - for stdin")
     check.add_argument(
-        "--format", default="auto", choices=("auto", *formatters.NAMES),
+        "--format",
+        default="auto",
+        choices=("auto", *formatters.NAMES),
         help="output format; auto = github when GITHUB_ACTIONS is set, else text",
     )
-    check.add_argument("--select", action="append", type=_codes, default=[], metavar="CODES",
-                       help="run only these rules (codes, names or family letters, comma-separated)")
-    check.add_argument("--ignore", action="append", type=_codes, default=[], metavar="CODES",
-                       help="do not run these rules (added to the configured ignores)")
-    check.add_argument("--fail-on", choices=config.FAIL_ON, default=None,
-                       help="lowest severity that makes the exit code 1 (default: error)")
+    check.add_argument(
+        "--select",
+        action="append",
+        type=_codes,
+        default=[],
+        metavar="CODES",
+        help="run only these rules (codes, names or family letters, comma-separated)",
+    )
+    check.add_argument(
+        "--ignore",
+        action="append",
+        type=_codes,
+        default=[],
+        metavar="CODES",
+        help="do not run these rules (added to the configured ignores)",
+    )
+    check.add_argument(
+        "--fail-on",
+        choices=config.FAIL_ON,
+        default=None,
+        help="lowest severity that makes the exit code 1 (default: error)",
+    )
     check.add_argument("--exit-zero", action="store_true", help="same as --fail-on never")
-    check.add_argument("--target", action="append", choices=tuple(targets.TARGETS), default=[],
-                       help="consumer the model is meant for (repeatable; default gazebo-classic)")
-    check.add_argument("--config", type=Path, metavar="FILE",
-                       help="use this configuration file instead of discovering one")
+    check.add_argument(
+        "--target",
+        action="append",
+        choices=tuple(targets.TARGETS),
+        default=[],
+        help="consumer the model is meant for (repeatable; default gazebo-classic)",
+    )
+    check.add_argument(
+        "--config",
+        type=Path,
+        metavar="FILE",
+        help="use this configuration file instead of discovering one",
+    )
     check.add_argument("--isolated", action="store_true", help="ignore every configuration file")
-    check.add_argument("--stdin-filename", default="<stdin>", metavar="NAME",
-                       help="path to show (and to match per-file ignores) for input read from -")
+    check.add_argument(
+        "--stdin-filename",
+        default="<stdin>",
+        metavar="NAME",
+        help="path to show (and to match per-file ignores) for input read from -",
+    )
 
     rules = sub.add_parser("rules", help="list the rules")
     rules.add_argument("--format", choices=("text", "json"), default="text")
@@ -128,10 +160,10 @@ class SettingsFinder:
         return self._apply(self.cache[folder])
 
     def _apply(self, settings: config.Settings) -> config.Settings:
-        extra = dict(self.overrides)
+        extra: dict[str, Any] = dict(self.overrides)
         if "ignore" in extra:
-            extra["ignore"] = settings.ignore + tuple(extra["ignore"])  # type: ignore[operator]
-        return replace(settings, **extra)  # type: ignore[arg-type]
+            extra["ignore"] = settings.ignore + tuple(extra["ignore"])
+        return replace(settings, **extra)
 
 
 def collect(paths: Sequence[str]) -> tuple[list[str], list[str]]:
@@ -145,9 +177,12 @@ def collect(paths: Sequence[str]) -> tuple[list[str], list[str]]:
         path = Path(raw)
         if path.is_dir():
             found = sorted(
-                p for p in path.rglob("*.urdf")
-                if p.is_file() and not any(
-                    part.startswith(".") or part in SKIP_DIRS for part in p.relative_to(path).parts[:-1]
+                p
+                for p in path.rglob("*.urdf")
+                if p.is_file()
+                and not any(
+                    part.startswith(".") or part in SKIP_DIRS
+                    for part in p.relative_to(path).parts[:-1]
                 )
             )
             files.extend(str(p) for p in found)
@@ -224,8 +259,17 @@ def _skipped_note(path: str, skipped: dict[str, tuple[str, ...]]) -> Finding:
         f"{len(skipped)} rule(s) skipped ({', '.join(sorted(skipped))}): "
         f"{', '.join(modules)} not installed; install urdflint[{','.join(extras)}]"
     )
-    return Finding(path, 1, 1, rule.code, rule.name, rule.severity, message, "/robot",
-                   f"pip install 'urdflint[{','.join(extras)}]'")
+    return Finding(
+        path,
+        1,
+        1,
+        rule.code,
+        rule.name,
+        rule.severity,
+        message,
+        "/robot",
+        f"pip install 'urdflint[{','.join(extras)}]'",
+    )
 
 
 # -- rules and explain ---------------------------------------------------------------
@@ -235,8 +279,15 @@ def run_rules(args: argparse.Namespace) -> int:
     rules = registry.load_rules()
     if args.format == "json":
         data = [
-            {"code": r.code, "name": r.name, "severity": str(r.severity), "family": registry.FAMILIES[r.family],
-             "summary": r.summary, "needs": list(r.needs), "options": dict(r.options)}
+            {
+                "code": r.code,
+                "name": r.name,
+                "severity": str(r.severity),
+                "family": registry.FAMILIES[r.family],
+                "summary": r.summary,
+                "needs": list(r.needs),
+                "options": dict(r.options),
+            }
             for r in sorted(rules.values(), key=lambda r: r.code)
         ]
         print(json.dumps({"version": 1, "rules": data}, indent=2))

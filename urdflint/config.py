@@ -19,7 +19,16 @@ from urdflint.finding import Severity
 FILENAMES = (".urdflint.toml", "urdflint.toml", "pyproject.toml")
 FAIL_ON = ("error", "warning", "info", "never")
 KEYS = frozenset(
-    {"select", "extend-select", "ignore", "severity", "per-file-ignores", "fail-on", "targets", "rules"}
+    {
+        "select",
+        "extend-select",
+        "ignore",
+        "severity",
+        "per-file-ignores",
+        "fail-on",
+        "targets",
+        "rules",
+    }
 )
 
 
@@ -93,21 +102,29 @@ def from_mapping(data: dict[str, Any], source: Path | None = None) -> Settings:
         raise ConfigError("the urdflint configuration must be a table")
     unknown = sorted(set(data) - KEYS)
     if unknown:
-        raise ConfigError(f"unknown configuration key '{unknown[0]}' (known: {', '.join(sorted(KEYS))})")
+        raise ConfigError(
+            f"unknown configuration key '{unknown[0]}' (known: {', '.join(sorted(KEYS))})"
+        )
     settings = Settings(source=source)
     if "select" in data:
         settings = replace(settings, select=_selectors("select", data["select"]))
     if "extend-select" in data:
-        settings = replace(settings, extend_select=_selectors("extend-select", data["extend-select"]))
+        settings = replace(
+            settings, extend_select=_selectors("extend-select", data["extend-select"])
+        )
     if "ignore" in data:
         settings = replace(settings, ignore=_selectors("ignore", data["ignore"]))
     if "fail-on" in data:
         if data["fail-on"] not in FAIL_ON:
-            raise ConfigError(f"'fail-on' must be one of {', '.join(FAIL_ON)}, not {data['fail-on']!r}")
+            raise ConfigError(
+                f"'fail-on' must be one of {', '.join(FAIL_ON)}, not {data['fail-on']!r}"
+            )
         settings = replace(settings, fail_on=data["fail-on"])
     if "targets" in data:
         try:
-            settings = replace(settings, targets=targets.validate(_strings("targets", data["targets"])))
+            settings = replace(
+                settings, targets=targets.validate(_strings("targets", data["targets"]))
+            )
         except ValueError as exc:
             raise ConfigError(f"'targets': {exc}") from None
     if "severity" in data:
@@ -116,7 +133,9 @@ def from_mapping(data: dict[str, Any], source: Path | None = None) -> Settings:
         table = data["per-file-ignores"]
         if not isinstance(table, dict):
             raise ConfigError("'per-file-ignores' must be a table of glob = [codes]")
-        pairs = tuple((glob, _selectors(f"per-file-ignores.{glob}", codes)) for glob, codes in table.items())
+        pairs = tuple(
+            (glob, _selectors(f"per-file-ignores.{glob}", codes)) for glob, codes in table.items()
+        )
         settings = replace(settings, per_file_ignores=pairs)
     if "rules" in data:
         settings = replace(settings, rule_options=_rule_options(data["rules"]))
@@ -154,7 +173,9 @@ def _rule_options(table: Any) -> dict[str, dict[str, Any]]:
         for name, value in options.items():
             if name not in found.options:
                 known = ", ".join(found.options) or "none"
-                raise ConfigError(f"unknown option 'rules.{key}.{name}' (options of {found.code}: {known})")
+                raise ConfigError(
+                    f"unknown option 'rules.{key}.{name}' (options of {found.code}: {known})"
+                )
             default = found.options[name]
             if isinstance(default, (int, float)) and not isinstance(default, bool):
                 if not isinstance(value, (int, float)) or isinstance(value, bool):

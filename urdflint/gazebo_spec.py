@@ -12,6 +12,7 @@ only the SDF elements in :data:`SDF_ELEMENTS` mean anything.
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
@@ -343,6 +344,12 @@ def distance(a: str, b: str) -> int:
     return rows[-1][-1]
 
 
+def _bag_distance(a: str, b: str) -> int:
+    """Characters of one string not matched in the other: never more than the edit distance."""
+    ca, cb = Counter(a), Counter(b)
+    return max(sum((ca - cb).values()), sum((cb - ca).values()))
+
+
 def _fold(name: str) -> str:
     return name.lower().replace("_", "").replace("-", "")
 
@@ -359,6 +366,8 @@ def near_miss(name: str, candidates: list[str] | tuple[str, ...] | frozenset[str
         if candidate == name:
             return None
         other = _fold(candidate)
+        if abs(len(other) - len(folded)) > 2:
+            continue  # the edit distance is at least the length difference
         d = 0 if other == folded else distance(folded, other)
         limit = 2 if min(len(folded), len(other)) >= 8 else 1
         if d <= limit and (best is None or d < best[0]):
@@ -369,8 +378,17 @@ def near_miss(name: str, candidates: list[str] | tuple[str, ...] | frozenset[str
 def suggest(name: str, candidates: list[str] | tuple[str, ...] | frozenset[str]) -> str | None:
     """The closest candidate for a did-you-mean hint (looser than :func:`near_miss`)."""
     folded = _fold(name)
-    scored = sorted((distance(folded, _fold(c)), c) for c in candidates)
-    if not scored:
-        return None
-    d, best = scored[0]
-    return best if d <= max(1, len(folded) // 5) else None
+    limit = max(1, len(folded) // 5)
+    best: tuple[int, str] | None = None
+    for candidate in sorted(candidates):
+        other = _fold(candidate)
+        if abs(len(other) - len(folded)) > limit:
+            continue  # the edit distance is at least the length difference
+        if _bag_distance(folded, other) > limit:
+            continue  # a cheap lower bound of the edit distance
+        d = distance(folded, other)
+        if d <= limit and (best is None or d < best[0]):
+            best = (d, candidate)
+            if d == 0:
+                break
+    return best[1] if best else None

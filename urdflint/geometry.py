@@ -67,8 +67,18 @@ def read_shape(owner: etree._Element) -> Shape | None:
     if kind == "sphere":
         return Shape(kind, el, owner, xyz, rpy, radius=number(el, "radius"))
     if kind in ("cylinder", "capsule"):
-        return Shape(kind, el, owner, xyz, rpy, radius=number(el, "radius"), length=number(el, "length"))
-    return Shape(kind, el, owner, xyz, rpy, filename=el.get("filename"), scale=vector(el, "scale", 3, (1.0, 1.0, 1.0)))
+        return Shape(
+            kind, el, owner, xyz, rpy, radius=number(el, "radius"), length=number(el, "length")
+        )
+    return Shape(
+        kind,
+        el,
+        owner,
+        xyz,
+        rpy,
+        filename=el.get("filename"),
+        scale=vector(el, "scale", 3, (1.0, 1.0, 1.0)),
+    )
 
 
 def shapes(link: etree._Element, tag: str = "collision") -> list[Shape]:

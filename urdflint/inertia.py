@@ -241,6 +241,8 @@ class Bodies:
         self.graph = doc.graph
         self.kept = preserved_joints(doc)
         self.inertials = {name: read_inertial(link.element) for name, link in doc.link_map.items()}
+        self._members: dict[str, list] = {}
+        self._inertia: dict[str, tuple[float, Vec, Mat] | None] = {}
 
     def merged(self, name: str) -> bool:
         """Whether ``name`` is lumped into its parent (fixed joint, not kept, parent not world)."""
@@ -264,6 +266,11 @@ class Bodies:
 
     def members(self, body: str) -> list[tuple[str, Mat, Vec] | tuple[str, None, None]]:
         """``(link, R, p)`` of the body's links in its frame (``None``: unreadable origin)."""
+        if body not in self._members:
+            self._members[body] = self._collect(body)
+        return self._members[body]
+
+    def _collect(self, body: str) -> list[tuple[str, Mat, Vec] | tuple[str, None, None]]:
         found: list = [(body, IDENTITY, ZERO)]
         seen = {body}
         index = 0
@@ -296,6 +303,11 @@ class Bodies:
 
     def inertia(self, body: str) -> tuple[float, Vec, Mat] | None:
         """``(mass, centre of mass, tensor about it)`` of the lumped body, in the body's frame."""
+        if body not in self._inertia:
+            self._inertia[body] = self._combine(body)
+        return self._inertia[body]
+
+    def _combine(self, body: str) -> tuple[float, Vec, Mat] | None:
         parts: list[tuple[float, Vec, Mat]] = []
         for name, rot, pos in self.members(body):
             inertial = self.inertials.get(name)

@@ -73,7 +73,9 @@ def lint_document(doc: Document, settings: Settings) -> Result:
 
     findings: list[Finding] = []
     for rule, hit in raw:
-        covering = [d for d in directives if d.covers(rule.code, hit.element, doc.root)] if doc.ok else []
+        covering = (
+            [d for d in directives if d.covers(rule.code, hit.element, doc.root)] if doc.ok else []
+        )
         if covering:
             for directive in covering:
                 directive.used.add(rule.code)
@@ -104,9 +106,15 @@ def _unused(
 ) -> Iterable[Finding]:
     rule = registry.RULES["U002"]
     for directive in directives:
-        unused = sorted(code for code in directive.codes if code in enabled and code not in directive.used)
+        unused = sorted(
+            code for code in directive.codes if code in enabled and code not in directive.used
+        )
         if unused and not directive.used:
-            what = "file" if directive.target is None else f"<{etree.QName(directive.target).localname}>"
+            what = (
+                "file"
+                if directive.target is None
+                else f"<{etree.QName(directive.target).localname}>"
+            )
             hit = Hit(
                 directive.comment,
                 f"suppression of {', '.join(unused)} on this {what} matched no finding",
@@ -118,13 +126,19 @@ def _unused(
 def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     """Turn a rule's hit into a finding: path, line, column, element, code, severity."""
     element = hit.element
-    line = hit.line or (element.sourceline if element is not None else None) or (
-        doc.root.sourceline if doc.root is not None else 1
+    line = (
+        hit.line
+        or (element.sourceline if element is not None else None)
+        or (doc.root.sourceline if doc.root is not None else 1)
     )
     column = hit.column or (doc.column_of(element, line) if element is not None else 1)
     configured = settings.severity.get(rule.code)
     severity = configured or hit.severity or rule.severity
-    path = doc.element_path(element) if not isinstance(element, etree._Comment) else _comment_path(doc, element)
+    path = (
+        doc.element_path(element)
+        if not isinstance(element, etree._Comment)
+        else _comment_path(doc, element)
+    )
     return Finding(
         path=doc.path,
         line=max(int(line), 1),

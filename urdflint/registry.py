@@ -78,9 +78,7 @@ class Rule:
 
     def section(self, heading: str) -> str:
         """The text under ``## heading`` in the rule's docstring ('' if absent)."""
-        match = re.search(
-            rf"^## {re.escape(heading)}\s*\n(.*?)(?=^## |\Z)", self.doc, re.S | re.M
-        )
+        match = re.search(rf"^## {re.escape(heading)}\s*\n(.*?)(?=^## |\Z)", self.doc, re.S | re.M)
         return match.group(1).strip() if match else ""
 
 
@@ -151,7 +149,11 @@ def expand(selectors: list[str] | tuple[str, ...]) -> set[str]:
         if found is not None:
             codes.add(found.code)
             continue
-        prefix = [c for c in RULES if c.startswith(key.upper()) and re.fullmatch(r"[A-Z]\d{0,2}", key.upper())]
+        prefix = [
+            c
+            for c in RULES
+            if c.startswith(key.upper()) and re.fullmatch(r"[A-Z]\d{0,2}", key.upper())
+        ]
         if not prefix:
             raise ValueError(f"unknown rule or rule family {raw!r}")
         codes.update(prefix)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import enum
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 from lxml import etree
 
@@ -201,6 +202,7 @@ def _is_top(el: etree._Element) -> bool:
     return parent is not None and parent.tag == "robot" and parent.getparent() is None
 
 
+@lru_cache(maxsize=4096)
 def malformed(value: str, kind: Kind) -> str | None:
     """Why ``value`` is not a valid number of ``kind`` (X004), or ``None`` if it is.
 
@@ -224,6 +226,7 @@ def malformed(value: str, kind: Kind) -> str | None:
     return None if bad is None else f"contains {bad!r}, which is not a finite number"
 
 
+@lru_cache(maxsize=4096)
 def wrong_arity(value: str, kind: Kind) -> int | None:
     """The count of numbers when a vector of valid numbers has the wrong size, else ``None``."""
     if kind.arity < 2 or malformed(value, kind) is not None:

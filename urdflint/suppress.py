@@ -16,7 +16,9 @@ from lxml import etree
 
 from urdflint import registry
 
-DIRECTIVE_RE = re.compile(r"^\s*urdflint\s*:\s*(?P<kind>[a-z-]+)\s*(?:\[(?P<codes>[^\]]*)\])?(?P<reason>.*)$", re.S)
+DIRECTIVE_RE = re.compile(
+    r"^\s*urdflint\s*:\s*(?P<kind>[a-z-]+)\s*(?:\[(?P<codes>[^\]]*)\])?(?P<reason>.*)$", re.S
+)
 
 
 @dataclass(eq=False)
@@ -82,11 +84,18 @@ def parse(root: etree._Element) -> tuple[list[Directive], list[Malformed]]:
             continue
         kind = match["kind"]
         if kind not in ("ignore", "ignore-file"):
-            malformed.append(Malformed(comment, f"unknown directive 'urdflint: {kind}' (use ignore[...] or ignore-file[...])"))
+            malformed.append(
+                Malformed(
+                    comment,
+                    f"unknown directive 'urdflint: {kind}' (use ignore[...] or ignore-file[...])",
+                )
+            )
             continue
         raw = [c.strip() for c in (match["codes"] or "").split(",") if c.strip()]
         if not raw:
-            malformed.append(Malformed(comment, f"'urdflint: {kind}' needs rule codes, e.g. {kind}[I001]"))
+            malformed.append(
+                Malformed(comment, f"'urdflint: {kind}' needs rule codes, e.g. {kind}[I001]")
+            )
             continue
         try:
             codes = registry.expand(raw)

@@ -61,22 +61,27 @@ EXPAND = "the file must be expanded with xacro first"
     fix="Expand the file with xacro (xacro robot.urdf.xacro > robot.urdf) and lint the output.",
 )
 def check(doc: Document) -> Iterator[Hit]:
+    expressions = b"${" in doc.source or b"$(" in doc.source
     in_names: list[tuple[etree._Element, str]] = []
-    for el in doc.robot.iter(etree.Element):
-        if any(is_xacro(a) for a in el.iterancestors()):
-            continue  # reported with its xacro ancestor
-        if is_xacro(el):
-            yield _xacro_element(el)
-            continue
-        where = _expression(el)
-        if where is None:
-            continue
-        if _only_in_names(el):
-            in_names.append((el, where))
-        else:
-            yield Hit(el, f"{where} holds an unexpanded xacro expression; {EXPAND}")
+    stack = [doc.robot]
+    while stack:
+        node = stack.pop()
+        for el in node:
+            if not isinstance(el.tag, str):
+                continue
+            if el.tag[0] == "{" and is_xacro(el):
+                yield _xacro_element(el)  # its subtree is reported with it
+                continue
+            stack.append(el)
+            where = _expression(el) if expressions else None
+            if where is None:
+                continue
+            if _only_in_names(el):
+                in_names.append((el, where))
+            else:
+                yield Hit(el, f"{where} holds an unexpanded xacro expression; {EXPAND}")
     if in_names:
-        first, where = in_names[0]
+        first, where = min(in_names, key=lambda pair: pair[0].sourceline or 0)
         others = len(in_names) - 1
         more = f" (and {others} more name{'s' if others != 1 else ''})" if others else ""
         yield Hit(

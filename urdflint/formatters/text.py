@@ -10,7 +10,8 @@ from urdflint.formatters import RunInfo, summary_line
 
 def render(findings: Sequence[Finding], run: RunInfo) -> str:
     lines = [
-        f"{f.path}:{f.line}:{f.column}: {f.severity} {f.code} {f.name}: {f.message}" for f in findings
+        f"{f.path}:{f.line}:{f.column}: {f.severity} {f.code} {f.name}: {f.message}"
+        for f in findings
     ]
     lines.append(summary_line(findings, run))
     return "\n".join(lines) + "\n"
