@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import shutil
 import statistics
 import subprocess
@@ -24,6 +25,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT.parent / "shared" / "corpus" / "robots"
 SMALL = ROOT / "fixtures" / "models" / "example_arm.urdf"
+# Subprocesses run as a user's would: with bytecode caches (PYTHONDONTWRITEBYTECODE unset).
+ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 HEAVY = ("numpy", "scipy", "trimesh", "yourdfpy", "pinocchio", "fastapi")
 
 
@@ -115,32 +118,16 @@ def main() -> int:
             f"check_urdf, one process per file   min {cu_min * 1e3:8.1f} ms   median {cu_med * 1e3:8.1f} ms"
         )
         print(f"  ratio urdflint (in-process) / check_urdf: {lint_min / cu_min:.2f}x")
-        single_min, _ = best_of(
-            args.repeat,
-            lambda: [
-                subprocess.run(
-                    [
-                        sys.executable,
-                        "-m",
-                        "urdflint",
-                        "check",
-                        "--format",
-                        "json",
-                        "--exit-zero",
-                        name,
-                    ],
-                    capture_output=True,
-                    check=False,
-                )
-                for name, _ in blobs[:8]
-            ],
+        names = [name for name, _ in blobs]
+        cli = [sys.executable, "-m", "urdflint", "check", "--format", "json", "--exit-zero", *names]
+        subprocess.run(cli, capture_output=True, check=False, env=ENV)  # write bytecode caches
+        cli_min, _ = best_of(
+            args.repeat, lambda: subprocess.run(cli, capture_output=True, check=False, env=ENV)
         )
-        per_file = single_min / min(8, len(blobs))
-        cu_per_file = cu_min / len(blobs)
-        results.update(urdflint_cli_per_file_s=per_file, check_urdf_per_file_s=cu_per_file)
+        results.update(urdflint_cli_all_s=cli_min, ratio_cli_vs_check_urdf=cli_min / cu_min)
         print(
-            f"  one CLI process per file: urdflint {per_file * 1e3:.0f} ms vs check_urdf {cu_per_file * 1e3:.1f} ms "
-            f"({per_file / cu_per_file:.0f}x; urdflint's cost is the Python interpreter start)"
+            f"urdflint check <all files>, one CLI process: min {cli_min * 1e3:.0f} ms "
+            f"({cli_min / cu_min:.2f}x the check_urdf loop, which checks far less)"
         )
     else:
         print("check_urdf not installed (apt-get install liburdfdom-tools): skipped")
