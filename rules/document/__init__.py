@@ -9,4 +9,5 @@ from urdflint.rules.document import (  # noqa: F401
     x006_obsolete_gazebo_namespace,
     x007_unknown_element,
     x008_unexpanded_xacro,
+    x009_unsupported_urdf_version,
 )

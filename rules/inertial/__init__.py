@@ -12,4 +12,5 @@ from urdflint.rules.inertial import (  # noqa: F401
     i009_extreme_mass_ratio,
     i010_tiny_inertial,
     i011_root_link_inertia,
+    i012_incomplete_inertial,
 )

@@ -13,4 +13,5 @@ from urdflint.rules.joints import (  # noqa: F401
     j010_non_positive_effort_or_velocity,
     j011_missing_joint_origin,
     j012_unsupported_joint_type_for_target,
+    j013_incomplete_joint_element,
 )

@@ -10,4 +10,5 @@ from urdflint.rules.structure import (  # noqa: F401
     s007_missing_parent_or_child,
     s008_undefined_mimic_joint,
     s009_undefined_material,
+    s010_duplicate_material,
 )
