@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import re
+from functools import lru_cache
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -20,6 +21,7 @@ NUMBER_RE = re.compile(r"^[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?$")
 XACRO_RE = re.compile(r"\$\{|\$\(")
 
 
+@lru_cache(maxsize=8192)
 def parse_number(text: str | None) -> float | None:
     """A finite float, or ``None`` when ``text`` is missing or not a URDF number."""
     if text is None:
@@ -31,6 +33,7 @@ def parse_number(text: str | None) -> float | None:
     return value if math.isfinite(value) else None
 
 
+@lru_cache(maxsize=8192)
 def parse_numbers(text: str | None) -> tuple[float, ...] | None:
     """All whitespace-separated numbers, or ``None`` if any one is malformed."""
     if text is None:

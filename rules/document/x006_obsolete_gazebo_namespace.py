@@ -40,6 +40,8 @@ PLAYERSTAGE = "playerstage.sourceforge.net/gazebo/xmlschema"
     fix="Delete the Player/Stage xmlns declaration; no current parser reads it.",
 )
 def check(doc: Document) -> Iterator[Hit]:
+    if b"playerstage" not in doc.source:
+        return  # no declaration to find: skip the walk
     for el in doc.robot.iter(etree.Element):
         parent = el.getparent()
         inherited = parent.nsmap if parent is not None else {}
