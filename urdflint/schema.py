@@ -159,14 +159,29 @@ def walk(robot: etree._Element) -> Iterator[Visit]:
                 stack.append((child, child_key))
 
 
-def attributes(robot: etree._Element) -> Iterator[tuple[etree._Element, str, Kind]]:
-    """``(element, attribute, kind)`` for each typed attribute present on a known element."""
+def attributes(robot: etree._Element) -> list[tuple[etree._Element, str, Kind]]:
+    """``(element, attribute, kind)`` for each typed attribute present on a known element.
+
+    Computed once per ``<robot>`` (X004 and X005 both read it).
+    """
+    cached = _ATTRIBUTES.get(robot)
+    if cached is not None and cached[0] is robot:
+        return cached[1]
+    found = []
     for visit in walk(robot):
         if visit.key is None:
             continue
         for attr, kind in SPECS[visit.key].attrs.items():
             if visit.element.get(attr) is not None:
-                yield visit.element, attr, kind
+                found.append((visit.element, attr, kind))
+    _ATTRIBUTES.clear()  # keep only the document being linted
+    _ATTRIBUTES[robot] = (robot, found)
+    return found
+
+
+_ATTRIBUTES: dict[
+    etree._Element, tuple[etree._Element, list[tuple[etree._Element, str, Kind]]]
+] = {}
 
 
 def homes(tag: str) -> list[str]:

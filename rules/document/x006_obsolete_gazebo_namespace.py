@@ -1,8 +1,8 @@
 """The file declares the obsolete Player/Stage Gazebo XML namespaces.
 
 ## What it does
-Reports each `xmlns:*="http://playerstage.sourceforge.net/gazebo/xmlschema/#..."`
-declaration (usually `controller`, `interface`, `sensor`, `body`, `geom`...) on
+Reports the `xmlns:*="http://playerstage.sourceforge.net/gazebo/xmlschema/#..."`
+declarations (usually `controller`, `interface`, `sensor`, `body`, `geom`...), once per element that declares them, on
 `<robot>` or any other element.
 
 ## Why is this bad?
@@ -45,9 +45,16 @@ def check(doc: Document) -> Iterator[Hit]:
     for el in doc.robot.iter(etree.Element):
         parent = el.getparent()
         inherited = parent.nsmap if parent is not None else {}
-        for prefix, uri in sorted(el.nsmap.items(), key=lambda kv: kv[0] or ""):
-            if PLAYERSTAGE in uri and inherited.get(prefix) != uri:
-                name = f"xmlns:{prefix}" if prefix else "xmlns"
-                yield Hit(
-                    el, f"<{local_tag(el)}> declares the obsolete Gazebo namespace {name}={uri!r}"
-                )
+        names = [
+            f"xmlns:{prefix}" if prefix else "xmlns"
+            for prefix, uri in sorted(el.nsmap.items(), key=lambda kv: kv[0] or "")
+            if PLAYERSTAGE in uri and inherited.get(prefix) != uri
+        ]
+        if len(names) == 1:
+            yield Hit(el, f"<{local_tag(el)}> declares the obsolete Gazebo namespace {names[0]}")
+        elif names:
+            yield Hit(
+                el,
+                f"<{local_tag(el)}> declares {len(names)} obsolete Gazebo namespaces: "
+                + ", ".join(names),
+            )
