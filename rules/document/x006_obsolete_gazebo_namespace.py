@@ -2,8 +2,8 @@
 
 ## What it does
 Reports the `xmlns:*="http://playerstage.sourceforge.net/gazebo/xmlschema/#..."`
-declarations (usually `controller`, `interface`, `sensor`, `body`, `geom`...), once per element that declares them, on
-`<robot>` or any other element.
+declarations (usually `controller`, `interface`, `sensor`, `body`, `geom`...),
+once per element that declares them: `<robot>` or any other element.
 
 ## Why is this bad?
 These namespaces belong to the Gazebo 0.x XML schema of the Player/Stage era.
