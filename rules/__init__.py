@@ -10,6 +10,7 @@ from urdflint.rules import (  # noqa: F401
     inertial,
     joints,
     meta,
+    physics,
     structure,
     transmissions,
 )

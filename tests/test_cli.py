@@ -165,7 +165,7 @@ def test_directory_is_searched_recursively_for_urdf(capsys, tmp_path: Path) -> N
 
 def test_empty_directory_exits_2(capsys, tmp_path: Path) -> None:
     code, _, err = run(capsys, "check", str(tmp_path))
-    assert code == 2 and "no *.urdf files" in err
+    assert code == 2 and "no *.urdf or *.xacro files" in err
 
 
 def test_stdin(no_limit: Path) -> None:

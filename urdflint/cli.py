@@ -10,7 +10,7 @@ import argparse
 import json
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -90,6 +90,34 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="NAME",
         help="path to show (and to match per-file ignores) for input read from -",
     )
+    _model_options(check)
+    check.add_argument(
+        "--expect-mass",
+        metavar="KG[±TOL]",
+        type=_expect_mass,
+        help="fail (P003) unless the total mass is KG within ±TOL kg or ±N%% "
+        "(default tolerance: expect.mass-tolerance, 2%%)",
+    )
+    check.add_argument(
+        "--expect-com",
+        metavar="X,Y,Z[±TOL]",
+        type=_expect_com,
+        help="fail (P004) unless the centre of mass, in the root link frame, is X,Y,Z "
+        "within TOL metres (default: expect.com-tolerance, 0.01)",
+    )
+    check.add_argument(
+        "--emit-expanded",
+        type=Path,
+        metavar="FILE",
+        help="write the expanded URDF of a single xacro input to FILE",
+    )
+
+    info = sub.add_parser("info", help="the model: tree, per-link masses, total mass, COM, DOF")
+    info.add_argument("path", metavar="PATH", help="a URDF or xacro file")
+    info.add_argument("--format", choices=("text", "json"), default="text")
+    info.add_argument("--config", type=Path, metavar="FILE")
+    info.add_argument("--isolated", action="store_true")
+    _model_options(info)
 
     rules = sub.add_parser("rules", help="list the rules")
     rules.add_argument("--format", choices=("text", "json"), default="text")
@@ -97,6 +125,85 @@ def build_parser() -> argparse.ArgumentParser:
     explain = sub.add_parser("explain", help="show a rule's page: what, why, how to fix, examples")
     explain.add_argument("rule", metavar="CODE|NAME")
     return parser
+
+
+def _model_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--package-path",
+        action="append",
+        type=_pair("="),
+        default=[],
+        metavar="NAME=DIR",
+        help="where package NAME is (package:// and $(find NAME))",
+    )
+    parser.add_argument(
+        "--q",
+        action="append",
+        type=_joint_value,
+        default=[],
+        metavar="JOINT=VALUE",
+        help="joint position for the mass and COM computation (repeatable)",
+    )
+    parser.add_argument(
+        "--xacro-arg",
+        action="append",
+        type=_pair(":="),
+        default=[],
+        metavar="NAME:=VALUE",
+        help="argument for xacro files (repeatable)",
+    )
+
+
+def _pair(sep: str) -> Callable[[str], tuple[str, str]]:
+    def parse(text: str) -> tuple[str, str]:
+        name, found, value = text.partition(sep)
+        if not found or not name.strip():
+            raise argparse.ArgumentTypeError(f"expected NAME{sep}VALUE, got {text!r}")
+        return name.strip(), value.strip()
+
+    return parse
+
+
+def _float(text: str, what: str) -> float:
+    from urdflint.values import parse_number
+
+    value = parse_number(text.strip())
+    if value is None:
+        raise argparse.ArgumentTypeError(f"{what} {text!r} is not a number")
+    return value
+
+
+def _joint_value(text: str) -> tuple[str, float]:
+    name, value = _pair("=")(text)
+    return name, _float(value, f"joint {name!r} value")
+
+
+def _split_tolerance(text: str) -> tuple[str, str | None]:
+    for sep in ("±", "+-", "+/-"):
+        if sep in text:
+            value, _, tolerance = text.partition(sep)
+            return value, tolerance
+    return text, None
+
+
+def _expect_mass(text: str) -> tuple[float, float | None, float | None]:
+    """``12.3`` / ``12.3±0.2`` / ``12.3+-2%`` -> (mass, absolute tolerance, fraction)."""
+    value, tolerance = _split_tolerance(text)
+    mass = _float(value, "mass")
+    if tolerance is None:
+        return mass, None, None
+    if tolerance.strip().endswith("%"):
+        return mass, None, _float(tolerance.strip()[:-1], "tolerance") / 100
+    return mass, _float(tolerance, "tolerance"), None
+
+
+def _expect_com(text: str) -> tuple[tuple[float, float, float], float | None]:
+    value, tolerance = _split_tolerance(text)
+    parts = value.replace(",", " ").split()
+    if len(parts) != 3:
+        raise argparse.ArgumentTypeError(f"expected X,Y,Z[±TOL], got {text!r}")
+    com = tuple(_float(p, "coordinate") for p in parts)
+    return com, (_float(tolerance, "tolerance") if tolerance is not None else None)  # type: ignore[return-value]
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -107,6 +214,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return run_check(args)
         if args.command == "rules":
             return run_rules(args)
+        if args.command == "info":
+            return run_info(args)
         return run_explain(args)
     except UsageError as exc:
         print(f"urdflint: error: {exc}", file=sys.stderr)
@@ -136,6 +245,8 @@ def _overrides(args: argparse.Namespace) -> dict[str, object]:
         found["fail_on"] = args.fail_on
     if args.target:
         found["targets"] = tuple(dict.fromkeys(args.target))
+    if args.xacro_arg:
+        found["xacro_args"] = dict(args.xacro_arg)
     return found
 
 
@@ -143,7 +254,12 @@ class SettingsFinder:
     """Effective settings per file: discovered (or given) config plus CLI overrides."""
 
     def __init__(self, args: argparse.Namespace) -> None:
-        self.overrides = _overrides(args)
+        self.overrides = _overrides(args) if args.command == "check" else {}
+        if args.command == "info" and args.xacro_arg:
+            self.overrides["xacro_args"] = dict(args.xacro_arg)
+        self.expect_mass = getattr(args, "expect_mass", None)
+        self.expect_com = getattr(args, "expect_com", None)
+        self.q = dict(args.q)
         self.isolated = args.isolated
         self.explicit = config.load(args.config) if args.config else None
         self.cache: dict[Path, config.Settings] = {}
@@ -163,7 +279,22 @@ class SettingsFinder:
         extra: dict[str, Any] = dict(self.overrides)
         if "ignore" in extra:
             extra["ignore"] = settings.ignore + tuple(extra["ignore"])
-        return replace(settings, **extra)
+        if "xacro_args" in extra:
+            extra["xacro_args"] = {**settings.xacro_args, **extra["xacro_args"]}
+        expect = settings.expect
+        if self.expect_mass is not None:
+            mass, absolute, fraction = self.expect_mass
+            expect = replace(expect, mass=mass, mass_abs_tolerance=absolute)
+            if fraction is not None:
+                expect = replace(expect, mass_tolerance=fraction)
+        if self.expect_com is not None:
+            com, tolerance = self.expect_com
+            expect = replace(expect, com=com)
+            if tolerance is not None:
+                expect = replace(expect, com_tolerance=tolerance)
+        if self.q:
+            expect = replace(expect, q={**expect.q, **self.q})
+        return replace(settings, expect=expect, **extra)
 
 
 def collect(paths: Sequence[str]) -> tuple[list[str], list[str]]:
@@ -203,11 +334,15 @@ def run_check(args: argparse.Namespace) -> int:
     except config.ConfigError as exc:
         raise UsageError(str(exc)) from None
     files, errors = collect(args.paths)
+    context = _context(args)
     findings: list[Finding] = []
     checked: list[str] = []
+    models: dict[str, Any] = {}
     skipped: dict[str, tuple[str, ...]] = {}
     fail_on = "error"
     crashed = False
+    if args.emit_expanded and not (len(files) == 1 and linter.is_xacro(files[0])):
+        raise UsageError("--emit-expanded needs exactly one xacro file")
     for name in files:
         is_stdin = name == "-"
         shown = args.stdin_filename if is_stdin else name
@@ -216,16 +351,23 @@ def run_check(args: argparse.Namespace) -> int:
         except config.ConfigError as exc:
             raise UsageError(str(exc)) from None
         try:
-            data = sys.stdin.buffer.read() if is_stdin else Path(name).read_bytes()
+            if is_stdin:
+                result = linter.lint_bytes(
+                    sys.stdin.buffer.read(), shown, settings, context, Path.cwd()
+                )
+            else:
+                result = linter.lint_path(Path(name), shown, settings, context)
         except OSError as exc:
             errors.append(f"{shown}: cannot read: {exc.strerror or exc}")
             continue
-        result = linter.lint_bytes(data, shown, settings)
         checked.append(shown)
         findings.extend(result.findings)
         skipped.update(result.skipped)
         crashed = crashed or result.crashed
         fail_on = settings.fail_on
+        models[shown] = _model_summary(result)
+        if args.emit_expanded and result.document is not None:
+            args.emit_expanded.write_bytes(result.document.source)
     if skipped and checked and "U004" in finder.for_folder(Path.cwd()).enabled():
         findings.append(_skipped_note(checked[0], skipped))
     findings.sort(key=Finding.sort_key)
@@ -235,18 +377,53 @@ def run_check(args: argparse.Namespace) -> int:
     fmt = args.format
     if fmt == "auto":
         fmt = "github" if os.environ.get("GITHUB_ACTIONS") == "true" else "text"
-    run = formatters.RunInfo(__version__, tuple(checked))
+    run = formatters.RunInfo(__version__, tuple(checked), models if fmt == "json" else {})
     sys.stdout.write(formatters.get(fmt)(findings, run))
     sys.stdout.flush()
 
     if errors or crashed or not files:
         if not files and not errors:
-            print("urdflint: error: no *.urdf files found", file=sys.stderr)
+            print("urdflint: error: no *.urdf or *.xacro files found", file=sys.stderr)
         return EXIT_ERROR
     threshold = FAIL_LEVEL.get(fail_on)
     if threshold is not None and any(f.severity >= threshold for f in findings):
         return EXIT_FINDINGS
     return EXIT_OK
+
+
+def _context(args: argparse.Namespace) -> Any:
+    from urdflint.context import Context
+
+    return Context(package_paths={name: Path(folder) for name, folder in args.package_path})
+
+
+def _model_summary(result: Any) -> Any:
+    """The per-file ``model`` object of the JSON output (``None`` unless Pinocchio built it)."""
+    doc = result.document
+    if doc is None or "physics" not in doc.__dict__:
+        return None  # never import Pinocchio just for the summary
+    from urdflint.info import summary
+
+    return summary(doc)
+
+
+def run_info(args: argparse.Namespace) -> int:
+    from urdflint import info, linter
+
+    try:
+        settings = SettingsFinder(args).for_folder(Path(args.path).parent)
+    except config.ConfigError as exc:
+        raise UsageError(str(exc)) from None
+    path = Path(args.path)
+    if not path.is_file():
+        raise UsageError(f"{args.path}: no such file")
+    try:
+        doc = linter.load(path, args.path, settings, _context(args))
+    except OSError as exc:
+        raise UsageError(f"{args.path}: cannot read: {exc.strerror or exc}") from None
+    text, ok = info.render(doc, args.format)
+    sys.stdout.write(text)
+    return EXIT_OK if ok else EXIT_FINDINGS
 
 
 def _skipped_note(path: str, skipped: dict[str, tuple[str, ...]]) -> Finding:

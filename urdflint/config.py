@@ -28,12 +28,39 @@ KEYS = frozenset(
         "fail-on",
         "targets",
         "rules",
+        "package-paths",
+        "expect",
+        "xacro-args",
     }
 )
+EXPECT_KEYS = frozenset({"mass", "mass-tolerance", "com", "com-tolerance", "q"})
 
 
 class ConfigError(Exception):
     """An invalid configuration file or option; the CLI exits 2 with this message."""
+
+
+@dataclass(frozen=True)
+class Expect:
+    """What the robot must weigh and where its centre of mass must be (P003, P004).
+
+    ``mass_tolerance`` is a fraction of ``mass``; ``mass_abs_tolerance`` (from
+    ``--expect-mass 12.3±0.2``) wins when set. The COM is in the root link's frame,
+    at configuration ``q`` (joint name -> value; the neutral one otherwise).
+    """
+
+    mass: float | None = None
+    mass_tolerance: float = 0.02
+    mass_abs_tolerance: float | None = None
+    com: tuple[float, float, float] | None = None
+    com_tolerance: float = 0.01
+    q: dict[str, float] = field(default_factory=dict)
+
+    def mass_band(self) -> float:
+        """The allowed absolute deviation from ``mass`` in kg."""
+        if self.mass_abs_tolerance is not None:
+            return self.mass_abs_tolerance
+        return abs(self.mass or 0.0) * self.mass_tolerance
 
 
 @dataclass(frozen=True)
@@ -48,6 +75,9 @@ class Settings:
     fail_on: str = "error"
     targets: tuple[str, ...] = targets.DEFAULT_TARGETS
     rule_options: dict[str, dict[str, Any]] = field(default_factory=dict)
+    package_paths: dict[str, Path] = field(default_factory=dict)  # resolved against the file
+    expect: Expect = field(default_factory=Expect)
+    xacro_args: dict[str, str] = field(default_factory=dict)
     source: Path | None = None  # the file these settings came from
 
     def enabled(self) -> set[str]:
@@ -139,7 +169,71 @@ def from_mapping(data: dict[str, Any], source: Path | None = None) -> Settings:
         settings = replace(settings, per_file_ignores=pairs)
     if "rules" in data:
         settings = replace(settings, rule_options=_rule_options(data["rules"]))
+    if "package-paths" in data:
+        base = source.parent if source is not None else Path.cwd()
+        settings = replace(settings, package_paths=_package_paths(data["package-paths"], base))
+    if "expect" in data:
+        settings = replace(settings, expect=_expect(data["expect"]))
+    if "xacro-args" in data:
+        table = data["xacro-args"]
+        if not isinstance(table, dict) or not all(
+            isinstance(v, (str, int, float, bool)) for v in table.values()
+        ):
+            raise ConfigError("'xacro-args' must be a table of name = value")
+        settings = replace(settings, xacro_args={str(k): _arg_text(v) for k, v in table.items()})
     return settings
+
+
+def _arg_text(value: object) -> str:
+    return str(value).lower() if isinstance(value, bool) else str(value)
+
+
+def _package_paths(table: Any, base: Path) -> dict[str, Path]:
+    if not isinstance(table, dict) or not all(isinstance(v, str) for v in table.values()):
+        raise ConfigError("'package-paths' must be a table of package = \"folder\"")
+    return {str(name): (base / folder) for name, folder in table.items()}
+
+
+def _number(key: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ConfigError(f"'{key}' must be a number")
+    return float(value)
+
+
+def _expect(table: Any) -> Expect:
+    if not isinstance(table, dict):
+        raise ConfigError("'expect' must be a table (mass, mass-tolerance, com, com-tolerance, q)")
+    unknown = sorted(set(table) - EXPECT_KEYS)
+    if unknown:
+        raise ConfigError(
+            f"unknown configuration key 'expect.{unknown[0]}' "
+            f"(known: {', '.join(sorted(EXPECT_KEYS))})"
+        )
+    expect = Expect()
+    if "mass" in table:
+        expect = replace(expect, mass=_number("expect.mass", table["mass"]))
+    if "mass-tolerance" in table:
+        tolerance = _number("expect.mass-tolerance", table["mass-tolerance"])
+        if not 0 <= tolerance < 1:
+            raise ConfigError(
+                "'expect.mass-tolerance' is a fraction of the mass, from 0 to 1 (0.02 = 2 %)"
+            )
+        expect = replace(expect, mass_tolerance=tolerance)
+    if "com" in table:
+        com = table["com"]
+        if not isinstance(com, list) or len(com) != 3:
+            raise ConfigError("'expect.com' must be [x, y, z] in metres")
+        expect = replace(expect, com=tuple(_number("expect.com", v) for v in com))  # type: ignore[arg-type]
+    if "com-tolerance" in table:
+        expect = replace(
+            expect, com_tolerance=_number("expect.com-tolerance", table["com-tolerance"])
+        )
+    if "q" in table:
+        q = table["q"]
+        if not isinstance(q, dict):
+            raise ConfigError("'expect.q' must be a table of joint = value")
+        expect = replace(expect, q={str(k): _number(f"expect.q.{k}", v) for k, v in q.items()})
+    return expect
 
 
 def _severity_table(table: Any) -> dict[str, Severity | None]:

@@ -8,12 +8,34 @@ entity references is refused (X002), never expanded.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
 from urdflint.graph import Graph
+
+if TYPE_CHECKING:
+    from urdflint.config import Settings
+    from urdflint.context import Context
+    from urdflint.resolve import Resolver
+
+
+@dataclass(frozen=True, slots=True)
+class Origin:
+    """Where an element of an expanded xacro document was written.
+
+    ``exact`` is false when only the top-level file and the expanded line are known.
+    """
+
+    path: str
+    line: int
+    column: int = 1
+    exact: bool = True
+
 
 MAX_BYTES = 64 * 2**20
 XACRO_NS = "http://www.ros.org/wiki/xacro"
@@ -116,13 +138,25 @@ class Document:
         source: bytes,
         *,
         targets: frozenset[str] = frozenset({"gazebo-classic"}),
+        settings: Settings | None = None,
+        context: Context | None = None,
+        base_dir: Path | None = None,
+        origin: Callable[[etree._Element], Origin | None] | None = None,
+        problem: XmlProblem | None = None,
+        library: bool = False,
     ) -> None:
         self.path = path
         self.source = source
         self.targets = targets
-        self.problem: XmlProblem | None = None
+        self._settings = settings
+        self._context = context
+        self.base_dir = base_dir
+        self.origin = origin  # set for documents expanded from xacro
+        self.problem: XmlProblem | None = problem
         self.root: etree._Element | None = None
-        self._parse()
+        self.library = library  # an included xacro file: only document-level rules run
+        if problem is None:
+            self._parse()
 
     # -- parsing -----------------------------------------------------------------
 
@@ -188,6 +222,41 @@ class Document:
     @cached_property
     def lines(self) -> list[bytes]:
         return self.source.splitlines()
+
+    # -- run context -----------------------------------------------------------------
+
+    @property
+    def settings(self) -> Settings:
+        if self._settings is None:
+            from urdflint.config import Settings
+
+            self._settings = Settings(targets=tuple(sorted(self.targets)))
+        return self._settings
+
+    @property
+    def context(self) -> Context:
+        if self._context is None:
+            from urdflint.context import Context
+
+            self._context = Context()
+        return self._context
+
+    @cached_property
+    def resolver(self) -> Resolver:
+        """Resolves this document's mesh URIs (``package://``, ``file://``, relative)."""
+        return self.context.resolver(self.base_dir, self.settings)
+
+    @property
+    def meshes(self) -> Any:
+        """The run's mesh cache (trimesh is imported on first use)."""
+        return self.context.meshes
+
+    @cached_property
+    def physics(self) -> Any:
+        """The Pinocchio view of this document (Pinocchio is imported on first use)."""
+        from urdflint.physics import build
+
+        return build(self)
 
     # -- views ---------------------------------------------------------------------
 

@@ -7,17 +7,20 @@ import logging
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import cache
+from pathlib import Path
 
 from lxml import etree
 
 from urdflint import registry, suppress
 from urdflint.config import Settings
+from urdflint.context import Context
 from urdflint.document import Document
 from urdflint.finding import Finding, Severity
 from urdflint.registry import Hit, Rule
 
 log = logging.getLogger(__name__)
 
+LIBRARY_FAMILIES = frozenset({"X", "U"})  # what a xacro library file (no <link>) gets
 EXTRAS = {"pinocchio": "dynamics", "trimesh": "model", "yourdfpy": "model", "xacro": "xacro"}
 
 
@@ -41,11 +44,53 @@ class Result:
         return any(f.code == "U001" for f in self.findings)
 
 
-def lint_bytes(source: bytes, path: str, settings: Settings | None = None) -> Result:
-    """Lint one document given as bytes; ``path`` is only used for display."""
+XACRO_SUFFIXES = (".xacro",)
+
+
+def is_xacro(path: str) -> bool:
+    return path.lower().endswith(XACRO_SUFFIXES)
+
+
+def lint_bytes(
+    source: bytes,
+    path: str,
+    settings: Settings | None = None,
+    context: Context | None = None,
+    base_dir: Path | None = None,
+) -> Result:
+    """Lint one URDF given as bytes; ``path`` is for display, ``base_dir`` for relative meshes."""
     settings = settings or Settings()
-    doc = Document(path, source, targets=frozenset(settings.targets))
+    doc = Document(
+        path,
+        source,
+        targets=frozenset(settings.targets),
+        settings=settings,
+        context=context,
+        base_dir=base_dir,
+    )
     return lint_document(doc, settings)
+
+
+def load(path: Path, shown: str, settings: Settings, context: Context | None = None) -> Document:
+    """A file on disk as a document: a URDF, or a xacro file expanded first (no ROS needed)."""
+    context = context or Context()
+    if is_xacro(shown):
+        from urdflint import xacro_input
+
+        return xacro_input.document(path, shown, settings, context)
+    return Document(
+        shown,
+        path.read_bytes(),
+        targets=frozenset(settings.targets),
+        settings=settings,
+        context=context,
+        base_dir=path.parent,
+    )
+
+
+def lint_path(path: Path, shown: str, settings: Settings, context: Context | None = None) -> Result:
+    """Lint a file on disk (see :func:`load`)."""
+    return lint_document(load(path, shown, settings, context), settings)
 
 
 def lint_document(doc: Document, settings: Settings) -> Result:
@@ -56,6 +101,8 @@ def lint_document(doc: Document, settings: Settings) -> Result:
     for code in sorted(enabled):
         rule = rules[code]
         if rule.requires_robot and not doc.ok:
+            continue
+        if doc.library and rule.family not in LIBRARY_FAMILIES:
             continue
         if code in ("U002", "U003"):
             continue  # produced below, from the suppressions themselves
@@ -134,19 +181,27 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     column = hit.column or (doc.column_of(element, line) if element is not None else 1)
     configured = settings.severity.get(rule.code)
     severity = configured or hit.severity or rule.severity
+    shown, message = doc.path, hit.message
+    if doc.origin is not None and element is not None and not hit.line:
+        origin = doc.origin(element)
+        if origin is not None:
+            shown, line = origin.path, origin.line
+            column = origin.column
+            if not origin.exact:
+                message += f" (line {line} of the expanded document; see --emit-expanded)"
     path = (
         doc.element_path(element)
         if not isinstance(element, etree._Comment)
         else _comment_path(doc, element)
     )
     return Finding(
-        path=doc.path,
+        path=shown,
         line=max(int(line), 1),
         column=max(int(column), 1),
         code=rule.code,
         name=rule.name,
         severity=Severity(severity),
-        message=hit.message,
+        message=message,
         element=path,
         fix=hit.fix or rule.fix,
     )

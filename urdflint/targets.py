@@ -11,10 +11,16 @@ TARGETS: dict[str, str] = {
     "links without mass are dropped silently",
     "gz-sim": "Gazebo Sim (Fortress and later, sdformat >= 11.2): URDF colours become SDF "
     "materials, massless links are dropped with a warning",
+    "mujoco": "MuJoCo's URDF import: STL and OBJ meshes only (no Collada), inertia must "
+    "satisfy A + B >= C, mimic and transmissions are ignored",
 }
 DEFAULT_TARGETS: tuple[str, ...] = ("gazebo-classic",)
 
-LABELS: dict[str, str] = {"gazebo-classic": "Gazebo Classic", "gz-sim": "Gazebo Sim"}
+LABELS: dict[str, str] = {
+    "gazebo-classic": "Gazebo Classic",
+    "gz-sim": "Gazebo Sim",
+    "mujoco": "MuJoCo",
+}
 
 
 def validate(names: list[str] | tuple[str, ...]) -> tuple[str, ...]:

@@ -1,0 +1,1 @@
+"""P: physics, computed with Pinocchio (needs the dynamics extra)."""
