@@ -104,6 +104,8 @@ def lint_document(doc: Document, settings: Settings) -> Result:
             continue
         if doc.library and rule.family not in LIBRARY_FAMILIES:
             continue
+        if rule.targets and rule.targets.isdisjoint(settings.targets):
+            continue  # a target rule for consumers this run does not aim at
         if code in ("U002", "U003"):
             continue  # produced below, from the suppressions themselves
         missing = tuple(m for m in rule.needs if not available(m))

@@ -67,6 +67,7 @@ class Rule:
     needs: tuple[str, ...] = ()
     options: Mapping[str, Any] = field(default_factory=dict)
     requires_robot: bool = True
+    targets: frozenset[str] = frozenset()  # runs only for these targets (empty: always)
 
     @property
     def family(self) -> str:
@@ -94,6 +95,7 @@ def rule(
     needs: tuple[str, ...] = (),
     options: Mapping[str, Any] | None = None,
     requires_robot: bool = True,
+    targets: tuple[str, ...] = (),
 ) -> Callable[[Check], Check]:
     """Register a rule; the module docstring is its documentation page.
 
@@ -101,7 +103,8 @@ def rule(
     names optional modules (``"pinocchio"``, ``"trimesh"``) the check imports
     lazily; ``options`` maps option names to defaults, and a rule with options
     is called as ``check(doc, opts)``; ``requires_robot=False`` lets the rule
-    run on documents that are not a usable ``<robot>`` (the X001/X002 rules).
+    run on documents that are not a usable ``<robot>`` (the X001/X002 rules);
+    ``targets`` limits a target rule to runs that select one of those targets.
     """
 
     def register(fn: Check) -> Check:
@@ -112,7 +115,16 @@ def rule(
         module = inspect.getmodule(fn)
         doc = inspect.cleandoc(module.__doc__ or "") if module else ""
         RULES[code] = Rule(
-            code, name, severity, fn, doc, fix, tuple(needs), dict(options or {}), requires_robot
+            code,
+            name,
+            severity,
+            fn,
+            doc,
+            fix,
+            tuple(needs),
+            dict(options or {}),
+            requires_robot,
+            frozenset(targets),
         )
         return fn
 

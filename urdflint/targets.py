@@ -36,3 +36,6 @@ def gazebo_label(targets: frozenset[str]) -> str:
     """'Gazebo Classic', 'Gazebo Sim' or 'Gazebo' when both are selected."""
     gazebos = [LABELS[t] for t in ("gazebo-classic", "gz-sim") if t in targets]
     return gazebos[0] if len(gazebos) == 1 else "Gazebo"
+
+
+GAZEBO: tuple[str, ...] = ("gazebo-classic", "gz-sim")

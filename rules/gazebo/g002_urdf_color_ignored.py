@@ -33,6 +33,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from urdflint import targets
 from urdflint.document import Document
 from urdflint.finding import Severity
 from urdflint.gazebo_spec import blocks_for, keys_of
@@ -48,6 +49,7 @@ GREY_SPREAD, GREY_LOW, GREY_HIGH = 0.05, 0.4, 0.8
     "urdf-color-ignored",
     Severity.WARNING,
     fix='Add <gazebo reference="link"><material>Gazebo/...</material></gazebo> for the link.',
+    targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
     classic = "gazebo-classic" in doc.targets

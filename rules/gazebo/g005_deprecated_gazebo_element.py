@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint import targets
 from urdflint.document import Document
 from urdflint.finding import Severity
 from urdflint.gazebo_spec import LEGACY, describe, keys_of
@@ -38,6 +39,7 @@ from urdflint.registry import Hit, rule
     "deprecated-gazebo-element",
     Severity.WARNING,
     fix="Replace the key by its current equivalent, or remove it.",
+    targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
     for gazebo in doc.gazebo:

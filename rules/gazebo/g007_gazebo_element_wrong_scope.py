@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint import targets
 from urdflint.document import Document
 from urdflint.finding import Severity
 from urdflint.gazebo_spec import KEYS, LEGACY, SCOPE_SDF, describe, homes, keys_of, scopes_of
@@ -46,6 +47,7 @@ BLOCK = {
     "gazebo-element-wrong-scope",
     Severity.WARNING,
     fix="Move the element into the <gazebo> block of the link, joint or robot it belongs to.",
+    targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
     for gazebo in doc.gazebo:

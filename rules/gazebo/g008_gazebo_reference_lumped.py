@@ -35,6 +35,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from urdflint import targets
 from urdflint.document import Document
 from urdflint.finding import Severity
 from urdflint.gazebo_spec import (
@@ -53,6 +54,7 @@ from urdflint.registry import Hit, rule
     "gazebo-reference-lumped",
     Severity.WARNING,
     fix="Move the setting to the surviving link, or keep the joint with <preserveFixedJoint>.",
+    targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
     kept = preserved_joints(doc)

@@ -37,6 +37,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from urdflint import targets
 from urdflint.document import Document, children
 from urdflint.finding import Severity
 from urdflint.registry import Hit, rule
@@ -58,6 +59,7 @@ GAZEBO_HARDWARE = re.compile(r"^\s*(gazebo_ros2_control|gz_ros2_control|ign_ros2
     "missing-ros-control-plugin",
     Severity.WARNING,
     fix="Add the gazebo_ros_control (ROS 1) or gz_ros2_control (ROS 2) plugin in a <gazebo> block.",
+    targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
     hardware = _gazebo_hardware(doc.robot)

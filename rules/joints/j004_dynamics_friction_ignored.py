@@ -45,6 +45,7 @@ from urdflint.values import fmt, number
     "dynamics-friction-ignored",
     Severity.INFO,
     fix="Do not rely on joint friction alone to hold a joint; add damping or a controller.",
+    targets=("gazebo-classic",),
 )
 def check(doc: Document) -> Iterator[Hit]:
     if "gazebo-classic" not in doc.targets:

@@ -38,6 +38,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint import joints as J
+from urdflint import targets
 from urdflint.document import Document
 from urdflint.finding import Severity
 from urdflint.registry import Hit, rule
@@ -51,6 +52,7 @@ GAZEBO_TARGETS = frozenset({"gazebo-classic", "gz-sim"})
     "unsupported-joint-type-for-target",
     Severity.ERROR,
     fix="Replace the joint with supported joints (prismatic/continuous chain) or a Gazebo plugin.",
+    targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
     if not doc.targets & GAZEBO_TARGETS:
