@@ -21,7 +21,7 @@ from urdflint.registry import Hit, Rule
 log = logging.getLogger(__name__)
 
 LIBRARY_FAMILIES = frozenset({"X", "U"})  # what a xacro library file (no <link>) gets
-EXTRAS = {"pinocchio": "dynamics", "trimesh": "model", "yourdfpy": "model", "xacro": "xacro"}
+EXTRAS = {"pinocchio": "dynamics", "trimesh": "model", "yourdfpy": "model"}
 
 
 @cache
