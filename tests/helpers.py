@@ -17,7 +17,7 @@ def lint_file(
     settings = settings or fixture_settings(path)
     if select is not None:
         settings = config.Settings(**{**settings.__dict__, "select": select})
-    return linter.lint_bytes(path.read_bytes(), str(path), settings).findings
+    return linter.lint_path(path, str(path), settings).findings
 
 
 def lint_text(text: str, select: tuple[str, ...] | None = None, **kwargs: object) -> list[Finding]:

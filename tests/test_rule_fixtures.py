@@ -20,17 +20,24 @@ EXEMPT = {"U001", "U004"}
 RULES = sorted(registry.load_rules().values(), key=lambda r: r.code)
 
 
+SUFFIXES = (".urdf", ".xacro")
+
+
+def fixtures(code: str, prefix: str) -> list:
+    folder = FIXTURES / "rules" / code
+    return sorted(p for p in folder.glob(f"{prefix}*") if p.suffix in SUFFIXES)
+
+
 @pytest.mark.parametrize("rule", [r for r in RULES if r.code not in EXEMPT], ids=lambda r: r.code)
 def test_rule_has_fixtures(rule: registry.Rule) -> None:
-    folder = FIXTURES / "rules" / rule.code
-    assert sorted(folder.glob("good*.urdf")), f"{rule.code}: no good*.urdf in {folder}"
-    assert sorted(folder.glob("bad*.urdf")), f"{rule.code}: no bad*.urdf in {folder}"
+    assert fixtures(rule.code, "good"), f"{rule.code}: no good*.urdf or good*.xacro"
+    assert fixtures(rule.code, "bad"), f"{rule.code}: no bad*.urdf or bad*.xacro"
 
 
 def _cases(prefix: str) -> list[tuple[str, object]]:
     cases = []
     for rule in RULES:
-        for path in sorted((FIXTURES / "rules" / rule.code).glob(f"{prefix}*.urdf")):
+        for path in fixtures(rule.code, prefix):
             cases.append(pytest.param(rule, path, id=f"{rule.code}/{path.name}"))
     return cases
 

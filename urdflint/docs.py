@@ -12,7 +12,7 @@ def examples(code: str) -> list[tuple[str, str]]:
     """``(file name, text)`` of the rule's fixtures, bad ones first."""
     try:
         folder = resources.files("urdflint.fixtures") / "rules" / code
-        names = sorted(p.name for p in folder.iterdir() if p.name.endswith(".urdf"))
+        names = sorted(p.name for p in folder.iterdir() if p.name.endswith((".urdf", ".xacro")))
     except (FileNotFoundError, ModuleNotFoundError, NotADirectoryError):
         return []
     ordered = [n for n in names if n.startswith("bad")] + [n for n in names if n.startswith("good")]

@@ -184,8 +184,9 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     configured = settings.severity.get(rule.code)
     severity = configured or hit.severity or rule.severity
     shown, message = doc.path, hit.message
-    if doc.origin is not None and element is not None and not hit.line:
-        origin = doc.origin(element)
+    anchor = element if element is not None else doc.root  # robot-level: the <robot> tag
+    if doc.origin is not None and anchor is not None and not hit.line:
+        origin = doc.origin(anchor)
         if origin is not None:
             shown, line = origin.path, origin.line
             column = origin.column

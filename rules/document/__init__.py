@@ -10,4 +10,6 @@ from urdflint.rules.document import (  # noqa: F401
     x007_unknown_element,
     x008_unexpanded_xacro,
     x009_unsupported_urdf_version,
+    x010_xacro_expansion_failed,
+    x011_xacro_library,
 )

@@ -41,7 +41,8 @@ from urdflint.schema import owner
 
 @rule("X003", "missing-name", Severity.ERROR, fix="Add a unique, non-empty name attribute.")
 def check(doc: Document) -> Iterator[Hit]:
-    named: list[tuple[etree._Element, str]] = [(doc.robot, "<robot>")]
+    # A xacro library's <robot> is only a wrapper for its macros: it needs no name.
+    named: list[tuple[etree._Element, str]] = [] if doc.library else [(doc.robot, "<robot>")]
     named += [(link.element, "<link>") for link in doc.links]
     named += [(joint.element, "<joint>") for joint in doc.joints]
     named += [(material, "top-level <material>") for material in doc.materials]

@@ -1,0 +1,45 @@
+"""A xacro file cannot be expanded.
+
+## What it does
+Expands `*.xacro` files in-process with the `xacro` package (no ROS needed) and
+reports the first error xacro meets: an undefined property or macro, a missing
+or unreadable include, an XML error in an included file, a `$(find pkg)` whose
+package is not found, a `$(arg name)` with no value, runaway recursion. The
+message is xacro's, naming the file and line where the problem is when it can
+be found; the finding's line is in the file you checked (for an error inside an
+included file, the line of the `<xacro:include>` that leads to it).
+
+## Why is this bad?
+`xacro` (and so `ros2 launch`, `robot_state_publisher`, Gazebo's spawn scripts)
+stops at the same error: no URDF is produced and nothing downstream can load the
+robot. Since there is no expanded document, no other rule can check the robot.
+
+## How to fix
+Fix the cause named in the message: define the property before it is used,
+correct the include path, close the tag in the included file. For
+`$(find pkg)`, tell urdflint where the package is with `--package-path pkg=DIR`
+(or `package-paths` in the configuration, or `ROS_PACKAGE_PATH`); a
+`package.xml` in a folder above the file is found on its own. Give xacro
+arguments with `--xacro-arg name:=value`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+
+
+@rule(
+    "X010",
+    "xacro-expansion-failed",
+    Severity.ERROR,
+    requires_robot=False,
+    fix="Fix the xacro error named in the message; check the result with `xacro FILE`.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    problem = doc.problem
+    if problem is not None and problem.code == "X010":
+        yield Hit(None, problem.message, line=problem.line, column=problem.column)

@@ -1,0 +1,59 @@
+"""A xacro file is a library of macros or a fragment, not a robot: only document rules ran.
+
+## What it does
+Reports, as information, a xacro file that has no `<link>` after expansion (a
+file of `xacro:macro` definitions, of `<material>` definitions, of `<gazebo>`
+blocks) and a file that cannot be expanded on its own only because it uses
+properties, macros or arguments that the file including it defines (urdflint
+looks for a file of the same package that includes it). Such files get only
+the document-level checks (X); the robot rules (structure, inertia, joints,
+Gazebo references) run on the file that includes them, where they are complete.
+
+## Why is this bad?
+It is not a defect: it tells you that this file was not checked as a robot, so
+that a clean result is not mistaken for a checked robot. Pre-commit hooks and
+`urdflint check folder/` hand every `.xacro` file to urdflint, libraries included.
+
+## How to fix
+Nothing to fix. Make sure the robot file that includes the library is checked
+too. If the file is meant to be a robot, add its links. To silence the note,
+ignore X011 for library files in the configuration (`per-file-ignores`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document, children
+from urdflint.finding import Severity
+from urdflint.registry import Hit, rule
+
+
+@rule(
+    "X011",
+    "xacro-library",
+    Severity.INFO,
+    requires_robot=False,
+    fix="Check the robot file that includes this one; libraries are checked there.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    problem = doc.problem
+    if problem is not None and problem.code == "X011":
+        yield Hit(None, problem.message, line=problem.line, column=problem.column)
+    elif doc.library and doc.ok:
+        contents = _contents(doc)
+        yield Hit(
+            doc.robot,
+            f"no <link> after expansion{contents}: a xacro library, so only"
+            " document-level rules ran on it",
+        )
+
+
+def _contents(doc: Document) -> str:
+    counts: dict[str, int] = {}
+    for el in children(doc.robot):
+        counts[el.tag] = counts.get(el.tag, 0) + 1
+    if not counts:
+        return " (it only defines macros or properties)"
+    listed = ", ".join(f"{n} <{tag}>" for tag, n in sorted(counts.items()))
+    return f" (it defines {listed})"
