@@ -132,7 +132,8 @@ def test_unknown_selector_is_a_usage_error(capsys, no_limit: Path) -> None:
 def test_select_and_ignore_take_codes_names_and_families(capsys, no_limit: Path) -> None:
     assert run(capsys, "check", "--select", "missing-limit", str(no_limit))[0] == 1
     assert run(capsys, "check", "--select", "J", "--ignore", "J001", str(no_limit))[0] == 0
-    assert run(capsys, "check", "--ignore", "J", str(no_limit))[0] == 0
+    # P001: Pinocchio is never handed a model urdfdom refuses, and says so
+    assert run(capsys, "check", "--ignore", "J,P", str(no_limit))[0] == 0
 
 
 def test_fail_on_threshold(capsys, tmp_path: Path) -> None:
@@ -251,3 +252,17 @@ def test_python_dash_m_works() -> None:
         [sys.executable, "-m", "urdflint", "--version"], capture_output=True, text=True
     )
     assert proc.returncode == 0 and proc.stdout.startswith("urdflint ")
+
+
+def test_expectations_without_pinocchio_fail_the_run(capsys, no_limit: Path, monkeypatch) -> None:
+    from urdflint import linter
+
+    monkeypatch.setattr(linter, "available", lambda module: module != "pinocchio")
+    code, out, _ = run(
+        capsys, "check", "--format", "json", "--select", "X,P", "--expect-mass", "1", str(GOOD)
+    )
+    [note] = [f for f in json.loads(out)["findings"] if f["code"] == "U004"]
+    assert code == 1 and note["severity"] == "error" and "NOT checked" in note["message"]
+    code, out, _ = run(capsys, "check", "--format", "json", "--select", "X,P,U", str(GOOD))
+    [note] = [f for f in json.loads(out)["findings"] if f["code"] == "U004"]
+    assert code == 0 and note["severity"] == "info"

@@ -24,14 +24,14 @@ def findings(capsys, *args: str) -> tuple[int, list[dict]]:
 
 
 def test_pyproject_table_is_discovered_upward(capsys, project: Path) -> None:
-    (project / "pyproject.toml").write_text('[tool.urdflint]\nignore = ["J001"]\n')
+    (project / "pyproject.toml").write_text('[tool.urdflint]\nignore = ["J001", "P001"]\n')
     code, found = findings(capsys, str(project / "robots"))
     assert code == 0 and all(f["code"] != "J001" for f in found)
 
 
 def test_pyproject_without_table_is_skipped(capsys, project: Path) -> None:
     (project / "robots" / "pyproject.toml").write_text('[project]\nname = "x"\n')
-    (project / "urdflint.toml").write_text('ignore = ["J001"]\n')
+    (project / "urdflint.toml").write_text('ignore = ["J001", "P001"]\n')
     code, _ = findings(capsys, str(project / "robots"))
     assert code == 0
 
@@ -45,7 +45,7 @@ def test_nearest_config_wins(capsys, project: Path) -> None:
 
 def test_severity_override_and_off(capsys, project: Path) -> None:
     (project / "urdflint.toml").write_text(
-        '[severity]\nJ001 = "warning"\nmissing-joint-origin = "off"\n'
+        '[severity]\nJ001 = "warning"\nP001 = "warning"\nmissing-joint-origin = "off"\n'
     )
     code, found = findings(capsys, str(project))
     j001 = [f for f in found if f["code"] == "J001"]
@@ -59,7 +59,7 @@ def test_fail_on_from_config(capsys, project: Path) -> None:
 
 
 def test_per_file_ignores(capsys, project: Path) -> None:
-    (project / "urdflint.toml").write_text('[per-file-ignores]\n"robots/**/*.urdf" = ["J"]\n')
+    (project / "urdflint.toml").write_text('[per-file-ignores]\n"robots/**/*.urdf" = ["J", "P"]\n')
     code, found = findings(capsys, str(project))
     assert code == 0 and all(not f["code"].startswith("J") for f in found)
 

@@ -32,7 +32,8 @@ REVIEWED_ERRORS: dict[str, set[str]] = {
     "unitree_a1": {"G001"},
     "unitree_go1": {"G001"},
     # effort="-1" velocity="-1" (SDF's "unlimited", not URDF's): Pinocchio refuses the model.
-    "eve_r3": {"J010"},
+    # Pinocchio is therefore not handed the model (P001 names the J010 finding).
+    "eve_r3": {"J010", "P001"},
     # Gripper fingers with iyy = izz = 0 but ixx > 0: no rigid body has that tensor.
     "fetch": {"I003"},
     # Ten moving links with an all-zero (or -5e-20) tensor; r_ankle_1's moments are ~1e-20.

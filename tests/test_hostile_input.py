@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import FIXTURES
 from tests.helpers import lint_text
 
 BILLION_LAUGHS = """<?xml version="1.0"?>
@@ -90,7 +91,7 @@ def test_binary_garbage_file_from_cli(tmp_path: Path) -> None:
 
 def test_unreadable_file_is_one_line_error(tmp_path: Path) -> None:
     path = tmp_path / "secret.urdf"
-    path.write_text("<robot name='r'/>")
+    path.write_text((FIXTURES / "models" / "example_arm.urdf").read_text())
     path.chmod(0)
     proc = subprocess.run(
         [sys.executable, "-m", "urdflint", "check", str(path)], capture_output=True, text=True

@@ -341,6 +341,7 @@ def run_check(args: argparse.Namespace) -> int:
     skipped: dict[str, tuple[str, ...]] = {}
     fail_on = "error"
     crashed = False
+    expects = False
     if args.emit_expanded and not (len(files) == 1 and linter.is_xacro(files[0])):
         raise UsageError("--emit-expanded needs exactly one xacro file")
     for name in files:
@@ -365,11 +366,13 @@ def run_check(args: argparse.Namespace) -> int:
         skipped.update(result.skipped)
         crashed = crashed or result.crashed
         fail_on = settings.fail_on
+        expects = expects or settings.expect.mass is not None or settings.expect.com is not None
         models[shown] = _model_summary(result)
         if args.emit_expanded and result.document is not None:
             args.emit_expanded.write_bytes(result.document.source)
-    if skipped and checked and "U004" in finder.for_folder(Path.cwd()).enabled():
-        findings.append(_skipped_note(checked[0], skipped))
+    gate = expects and bool({"P003", "P004"} & set(skipped))
+    if skipped and checked and (gate or "U004" in finder.for_folder(Path.cwd()).enabled()):
+        findings.append(_skipped_note(checked[0], skipped, expects))
     findings.sort(key=Finding.sort_key)
 
     for message in errors:
@@ -426,23 +429,27 @@ def run_info(args: argparse.Namespace) -> int:
     return EXIT_OK if ok else EXIT_FINDINGS
 
 
-def _skipped_note(path: str, skipped: dict[str, tuple[str, ...]]) -> Finding:
+def _skipped_note(path: str, skipped: dict[str, tuple[str, ...]], expects: bool) -> Finding:
+    """One note for the run; an error when mass/COM expectations could not be checked."""
     from urdflint.linter import EXTRAS
 
     rule = registry.RULES["U004"]
+    gate = expects and bool({"P003", "P004"} & set(skipped))
     modules = sorted({m for missing in skipped.values() for m in missing})
     extras = sorted({EXTRAS.get(m, m) for m in modules})
     message = (
         f"{len(skipped)} rule(s) skipped ({', '.join(sorted(skipped))}): "
         f"{', '.join(modules)} not installed; install urdflint[{','.join(extras)}]"
     )
+    if gate:
+        message += "; the mass and COM expectations were NOT checked"
     return Finding(
         path,
         1,
         1,
         rule.code,
         rule.name,
-        rule.severity,
+        Severity.ERROR if gate else rule.severity,
         message,
         "/robot",
         f"pip install 'urdflint[{','.join(extras)}]'",
