@@ -45,6 +45,9 @@ REVIEWED_ERRORS: dict[str, set[str]] = {
     "robotiq_3f": {"I005"},
     # Antennas with a negative principal moment; arm_1_link violates A + B >= C by 2 %.
     "tiago": {"I004", "I005"},
+    # Meshes referenced by relative path (meshes/*.STL) that this copy does not ship
+    # (MANIFEST: "meshes not kept"): in this tree the files really are missing.
+    "unitree_g1_29dof": {"C004"},
     # An unexpanded macro call <xacro:v1_pelvis_sensors_usb>: the pelvis IMU links are missing.
     "valkyrie": {"X008"},
 }

@@ -22,7 +22,9 @@ def test_colour_rule_follows_the_target() -> None:
     assert classic and all(f.severity is Severity.WARNING for f in classic)
     assert "Gazebo Classic" in classic[0].message
     assert sim and all(f.severity is Severity.INFO for f in sim)
-    assert run(COLOUR, "mujoco", select=("G002",)) == []  # not aimed at Gazebo: the rule does not run
+    assert (
+        run(COLOUR, "mujoco", select=("G002",)) == []
+    )  # not aimed at Gazebo: the rule does not run
 
 
 def test_structural_errors_do_not_depend_on_the_target() -> None:

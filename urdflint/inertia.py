@@ -230,6 +230,104 @@ def primitive_box(
     return lo, hi  # type: ignore[return-value]
 
 
+# -- meshes (loaded through the run's mesh cache; trimesh only when a link has a mesh) ---------
+
+
+def meshes_readable() -> bool:
+    """Whether meshes can be loaded here (trimesh installed): the I rules' mesh variants."""
+    from urdflint.linter import available
+
+    return available("trimesh")
+
+
+def mesh_box(doc: Document, shape: Shape) -> tuple[Vec, Vec] | None:
+    """The axis-aligned box, in the link frame, of a mesh shape after scale and origin.
+
+    ``None`` when the mesh does not resolve, cannot be read, or is not in metres (C004-C006).
+    """
+    from urdflint.meshes import MeshRef, load, suspicious_size
+
+    info = load(doc, MeshRef(None, "", shape))
+    if info is None or info.error is not None or suspicious_size(info):
+        return None
+    return transform_box((info.lo, info.hi), rpy_matrix(shape.rpy), shape.xyz)  # type: ignore[arg-type]
+
+
+def geometry_box(
+    doc: Document, link: etree._Element, tags: tuple[str, ...] = ("collision",)
+) -> tuple[Vec, Vec] | None:
+    """Union box of the link's shapes under ``tags``, meshes included when they can be read.
+
+    Like :func:`primitive_box`, but a mesh contributes its loaded bounding box. ``None``
+    unless every shape is readable (without trimesh: unless all are primitives).
+    """
+    boxes: list[tuple[Vec, Vec]] = []
+    readable = None
+    for tag in tags:
+        owners = link.findall(tag)
+        found = shapes(link, tag)
+        if len(found) != len(owners):
+            return None
+        for shape in found:
+            if shape.kind == "mesh":
+                if readable is None:
+                    readable = meshes_readable()
+                box = mesh_box(doc, shape) if readable else None
+            else:
+                box = aabb(shape)
+            if box is None:
+                return None
+            boxes.append(box)
+    if not boxes:
+        return None
+    lo = tuple(min(b[0][i] for b in boxes) for i in range(3))
+    hi = tuple(max(b[1][i] for b in boxes) for i in range(3))
+    return lo, hi  # type: ignore[return-value]
+
+
+def transform_box(box: tuple[Vec, Vec], rot: Mat, pos: Vec) -> tuple[Vec, Vec]:
+    """The axis-aligned box around ``box`` rotated by ``rot`` and moved by ``pos``."""
+    lo, hi = box
+    corners = [
+        apply(rot, (x, y, z))
+        for x in (lo[0], hi[0])
+        for y in (lo[1], hi[1])
+        for z in (lo[2], hi[2])
+    ]
+    new_lo = tuple(pos[i] + min(c[i] for c in corners) for i in range(3))
+    new_hi = tuple(pos[i] + max(c[i] for c in corners) for i in range(3))
+    return new_lo, new_hi  # type: ignore[return-value]
+
+
+def has_mesh(link: etree._Element, tags: tuple[str, ...] = ("collision", "visual")) -> bool:
+    return any(s.kind == "mesh" for tag in tags for s in shapes(link, tag))
+
+
+def body_box(
+    doc: Document, body: str, tags: tuple[str, ...] = ("collision", "visual")
+) -> tuple[Vec, Vec] | None:
+    """Union box, in the body's frame, of the geometry of every link lumped into ``body``.
+
+    Links without any visual or collision add nothing; ``None`` when one member's
+    geometry cannot be read or its origin is unreadable.
+    """
+    b = bodies(doc)
+    boxes: list[tuple[Vec, Vec]] = []
+    for name, rot, pos in b.members(body):
+        link = doc.link_map.get(name)
+        if link is None or not any(link.element.findall(tag) for tag in tags):
+            continue
+        box = geometry_box(doc, link.element, tags)
+        if box is None or rot is None or pos is None:
+            return None
+        boxes.append(transform_box(box, rot, pos))
+    if not boxes:
+        return None
+    lo = tuple(min(x[0][i] for x in boxes) for i in range(3))
+    hi = tuple(max(x[1][i] for x in boxes) for i in range(3))
+    return lo, hi  # type: ignore[return-value]
+
+
 # -- Gazebo's lumped bodies ---------------------------------------------------------------
 
 

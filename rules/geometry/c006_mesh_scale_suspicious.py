@@ -1,0 +1,69 @@
+"""A mesh is over 10 m or under 1 mm across after its `scale`: probably not in metres.
+
+## What it does
+Loads each mesh, applies the `<mesh scale>`, and reports a bounding box whose
+largest side is over 10 m or under 1 mm. When dividing by 1000 (millimetres),
+100 (centimetres), or multiplying by 1000 (a scale applied twice), gives a
+plausible part size (1 cm to 2 m), the message suggests that `scale`; both
+millimetres and centimetres when both fit.
+
+## Why is this bad?
+REP 103 fixes the unit of every ROS description at the metre, and so do
+Gazebo, MuJoCo, PyBullet, Drake and Pinocchio. STL has no unit at all and CAD
+tools export millimetres by default, so a part exported without conversion is
+1000 times too large: RViz shows a giant, Gazebo collides with a building-sized
+box, and the link's inertia no longer matches what is drawn. Nothing warns:
+every consumer takes the numbers as metres.
+
+## How to fix
+Export the mesh in metres, or set the conversion on the mesh:
+`<mesh filename="..." scale="0.001 0.001 0.001"/>` for millimetres.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.meshes import MAX_EXTENT, load, references, scale_hint, suspicious_size
+from urdflint.registry import Hit, rule
+from urdflint.structure import q
+from urdflint.values import fmt
+
+
+@rule(
+    "C006",
+    "mesh-scale-suspicious",
+    Severity.WARNING,
+    fix="Export the mesh in metres (REP 103) or set <mesh scale> to convert it.",
+    needs=("trimesh",),
+)
+def check(doc: Document) -> Iterator[Hit]:
+    for ref in references(doc):
+        info = load(doc, ref)
+        scale = ref.scale
+        if info is None or scale is None or not suspicious_size(info):
+            continue
+        size = info.largest
+        shown = " ".join(fmt(v) for v in scale)
+        what = f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}"
+        where = f"{fmt(size)} m across with scale {shown}"
+        hints = scale_hint(size)
+        if not hints:
+            band = "over 10 m" if size > MAX_EXTENT else "under 1 mm"
+            yield Hit(ref.element, f"{what} is {where}, {band}: check its unit")
+            continue
+        options = []
+        for factor, unit in hints:
+            better = " ".join(fmt(float(f"{v * factor:.6g}")) for v in scale)
+            new_size = fmt(float(f"{size * factor:.3g}"))
+            options.append((unit, better, new_size))
+        text = " or ".join(
+            f'{unit} (scale="{better}" makes it {new_size} m)' for unit, better, new_size in options
+        )
+        yield Hit(
+            ref.element,
+            f"{what} is {where}: probably {text}",
+            fix=f'Set scale="{options[0][1]}" on the <mesh>, or export the mesh in metres.',
+        )

@@ -1,0 +1,96 @@
+"""A mesh's format is one a selected target cannot load.
+
+## What it does
+Judges each `<mesh filename>` by its extension (case-insensitive) against the
+loaders of the selected targets:
+- Gazebo Classic 9/11 (`common::MeshManager`): STL, Collada (`.dae`) and OBJ
+  (OBJ since 2016, Gazebo 7/8);
+- Gazebo Sim (`gz-common`): STL, Collada and OBJ, plus glTF (`.gltf`, `.glb`)
+  and FBX through assimp since Garden (gz-common 5; Fortress has the first three);
+- MuJoCo: STL, OBJ and its own MSH; no Collada.
+
+MuJoCo's URDF import skips `<visual>` elements unless the file sets
+`<mujoco><compiler discardvisual="false"/></mujoco>` (URDF's default is
+`true`), so under `mujoco` only collision meshes count until then.
+An unknown or missing extension is reported for every target. It is an error
+when MuJoCo is among the targets that cannot load the file, since MuJoCo then
+refuses the whole model; a warning for Gazebo, which drops the geometry.
+
+## Why is this bad?
+MuJoCo's URDF import stops at the first unsupported mesh, and Collada is the
+most common reason a ROS robot does not load in MuJoCo. Gazebo Classic logs
+"Invalid mesh filename extension" or "Unsupported mesh format" and simulates
+the link without that visual or collision; a lost collision lets the link
+pass through the world.
+
+## How to fix
+Convert the mesh to a format every target reads: STL or OBJ for geometry
+(MuJoCo and both Gazebos), Collada or OBJ with a `.mtl` where colours matter
+in Gazebo. For MuJoCo, keep a converted copy of Collada visuals as OBJ
+(for example with `trimesh` or Blender).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from urdflint.document import Document
+from urdflint.finding import Severity
+from urdflint.meshes import KNOWN_FORMATS, TARGET_FORMATS, format_name, references, suffix
+from urdflint.registry import Hit, rule
+from urdflint.structure import q
+from urdflint.targets import LABELS
+
+READS = {
+    "gazebo-classic": "STL, Collada and OBJ",
+    "gz-sim": "STL, Collada, OBJ, glTF and FBX",
+    "mujoco": "STL, OBJ and MSH",
+}
+
+
+@rule(
+    "C009",
+    "unsupported-mesh-format",
+    Severity.WARNING,
+    fix="Convert the mesh to STL or OBJ, which every target reads.",
+)
+def check(doc: Document) -> Iterator[Hit]:
+    targets = [t for t in TARGET_FORMATS if t in doc.targets]
+    if not targets:
+        return
+    visuals = _mujoco_keeps_visuals(doc)
+    for ref in references(doc):
+        ext = suffix(ref.uri)
+        failing = [
+            t
+            for t in targets
+            if ext not in TARGET_FORMATS[t] and (t != "mujoco" or ref.tag == "collision" or visuals)
+        ]
+        if not failing:
+            continue
+        severity = Severity.ERROR if "mujoco" in failing else Severity.WARNING
+        what = f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}"
+        if not ext or ext not in KNOWN_FORMATS:
+            kind = "has no extension" if not ext else f"has the unknown extension '.{ext}'"
+            labels = " and ".join(LABELS[t] for t in failing)
+            yield Hit(
+                ref.element,
+                f"{what} {kind}, which {labels} cannot load",
+                severity=severity,
+            )
+            continue
+        labels = " and ".join(LABELS[t] for t in failing)
+        reads = "; ".join(f"{LABELS[t]} reads {READS[t]}" for t in failing)
+        yield Hit(
+            ref.element,
+            f"{labels} cannot load {format_name(ext)} {what} ({reads})",
+            severity=severity,
+        )
+
+
+def _mujoco_keeps_visuals(doc: Document) -> bool:
+    """Whether ``<mujoco><compiler discardvisual="false"/>`` asks MuJoCo to load visuals."""
+    for compiler in doc.robot.findall("mujoco/compiler"):
+        if (compiler.get("discardvisual") or "").strip().lower() in ("false", "0"):
+            return True
+    return False
