@@ -138,25 +138,34 @@ def main() -> int:
         ]
 
     cold_lxml = cold([sys.executable, "-c", "import lxml.etree"])
-    cold_lint = cold([sys.executable, "-m", "urdflint", "check", "--exit-zero", str(SMALL)])
+    cold_static = cold(
+        [sys.executable, "-m", "urdflint", "check", "--exit-zero", "--select", "X,S,J", str(SMALL)]
+    )
+    cold_full = cold([sys.executable, "-m", "urdflint", "check", "--exit-zero", str(SMALL)])
     results.update(
-        cold_import_lxml_s=cold_lxml, cold_urdflint_s=cold_lint, cold_ratio=cold_lint / cold_lxml
+        cold_import_lxml_s=cold_lxml,
+        cold_static_s=cold_static,
+        cold_full_s=cold_full,
+        cold_static_ratio=cold_static / cold_lxml,
     )
     print(
-        f"cold start: python -c 'import lxml.etree' {cold_lxml * 1e3:.0f} ms; "
-        f"urdflint check {SMALL.name} {cold_lint * 1e3:.0f} ms  ({cold_lint / cold_lxml:.2f}x)"
+        f"cold start on {SMALL.name}: python -c 'import lxml.etree' {cold_lxml * 1e3:.0f} ms; "
+        f"urdflint check --select X,S,J {cold_static * 1e3:.0f} ms ({cold_static / cold_lxml:.2f}x); "
+        f"urdflint check, every rule (Pinocchio) {cold_full * 1e3:.0f} ms ({cold_full / cold_lxml:.2f}x)"
     )
 
-    probe = (
-        "import sys; from urdflint import linter; "
-        f"linter.lint_bytes(open({str(files[0])!r}, 'rb').read(), 'x'); "
-        f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))"
-    )
-    heavy = subprocess.run(
-        [sys.executable, "-c", probe], capture_output=True, text=True, check=True
-    ).stdout.strip()
-    results["heavy_modules_imported"] = heavy.split(",") if heavy else []
-    print(f"heavy modules imported by a static lint: {heavy or 'none'}")
+    for label, select in (("--select X,S,J", ("X", "S", "J")), ("every rule", None)):
+        probe = (
+            "import sys; from urdflint import config, linter; "
+            f"s = config.Settings(select={select!r}); "
+            f"linter.lint_bytes(open({str(SMALL)!r}, 'rb').read(), 'x', s); "
+            f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))"
+        )
+        heavy = subprocess.run(
+            [sys.executable, "-c", probe], capture_output=True, text=True, check=True, env=ENV
+        ).stdout.strip()
+        results[f"heavy_modules {label}"] = heavy.split(",") if heavy else []
+        print(f"heavy modules imported by urdflint check {label}: {heavy or 'none'}")
     if args.json:
         print(json.dumps(results, indent=2))
     return 0
