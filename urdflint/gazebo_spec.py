@@ -13,6 +13,7 @@ only the SDF elements in :data:`SDF_ELEMENTS` mean anything.
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
@@ -149,6 +150,18 @@ def scopes_of(doc: Document, gazebo: etree._Element) -> frozenset[str] | None:
 def keys_of(gazebo: etree._Element) -> list[etree._Element]:
     """Plain (non-namespaced) element children of a ``<gazebo>`` block."""
     return [c for c in children(gazebo) if isinstance(c.tag, str) and not c.tag.startswith("{")]
+
+
+def resolved_keys(doc: Document) -> Iterator[tuple[etree._Element, frozenset[str], str]]:
+    """``(key element, scopes, owner)`` for every key of every block whose reference
+    resolves (blocks naming nothing are G001's)."""
+    for gazebo in doc.gazebo:
+        scopes = scopes_of(doc, gazebo)
+        if scopes is None:
+            continue
+        owner = describe(doc, gazebo)
+        for el in keys_of(gazebo):
+            yield el, scopes, owner
 
 
 def blocks_for(doc: Document, name: str) -> list[etree._Element]:

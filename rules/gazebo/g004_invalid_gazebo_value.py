@@ -36,7 +36,7 @@ from collections.abc import Iterator
 
 from urdflint.document import Document
 from urdflint.finding import Severity
-from urdflint.gazebo_spec import KEYS, describe, keys_of, scopes_of, value_of, value_problem
+from urdflint.gazebo_spec import KEYS, resolved_keys, value_of, value_problem
 from urdflint.registry import Hit, rule
 
 
@@ -47,21 +47,16 @@ from urdflint.registry import Hit, rule
     fix="Write a plain decimal number (or true/false) within the key's valid range.",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    for gazebo in doc.gazebo:
-        scopes = scopes_of(doc, gazebo)
-        if scopes is None:
+    for el, scopes, owner in resolved_keys(doc):
+        key = KEYS.get(str(el.tag))
+        if key is None or key.scope not in scopes:
             continue
-        owner = describe(doc, gazebo)
-        for el in keys_of(gazebo):
-            key = KEYS.get(str(el.tag))
-            if key is None or key.scope not in scopes:
-                continue
-            problem = value_problem(key, value_of(el))
-            if problem is None:
-                continue
-            reason, out_of_range = problem
-            yield Hit(
-                el,
-                f"<{key.name}> of {owner} {reason}",
-                severity=Severity.WARNING if out_of_range else None,
-            )
+        problem = value_problem(key, value_of(el))
+        if problem is None:
+            continue
+        reason, out_of_range = problem
+        yield Hit(
+            el,
+            f"<{key.name}> of {owner} {reason}",
+            severity=Severity.WARNING if out_of_range else None,
+        )

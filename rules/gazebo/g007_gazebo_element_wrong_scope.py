@@ -32,7 +32,7 @@ from collections.abc import Iterator
 from urdflint import targets
 from urdflint.document import Document
 from urdflint.finding import Severity
-from urdflint.gazebo_spec import KEYS, LEGACY, SCOPE_SDF, describe, homes, keys_of, scopes_of
+from urdflint.gazebo_spec import KEYS, LEGACY, SCOPE_SDF, homes, resolved_keys
 from urdflint.registry import Hit, rule
 
 BLOCK = {
@@ -50,23 +50,18 @@ BLOCK = {
     targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
-    for gazebo in doc.gazebo:
-        scopes = scopes_of(doc, gazebo)
-        if scopes is None:
+    for el, scopes, owner in resolved_keys(doc):
+        name = str(el.tag)
+        where = homes(name)
+        if name in LEGACY or not where or any(s in scopes for s in where):
             continue
-        owner = describe(doc, gazebo)
-        for el in keys_of(gazebo):
-            name = str(el.tag)
-            where = homes(name)
-            if name in LEGACY or not where or any(s in scopes for s in where):
-                continue
-            wanted = " or ".join(BLOCK[s] for s in where)
-            if name in KEYS:
-                what = f"a {KEYS[name].scope} key"
-            else:
-                what = "an SDF " + "/".join(SCOPE_SDF[s] for s in where) + " element"
-            yield Hit(
-                el,
-                f"<{name}> is {what}, ignored in the <gazebo> block of {owner}",
-                fix=f"Move it to {wanted}.",
-            )
+        wanted = " or ".join(BLOCK[s] for s in where)
+        if name in KEYS:
+            what = f"a {KEYS[name].scope} key"
+        else:
+            what = "an SDF " + "/".join(SCOPE_SDF[s] for s in where) + " element"
+        yield Hit(
+            el,
+            f"<{name}> is {what}, ignored in the <gazebo> block of {owner}",
+            fix=f"Move it to {wanted}.",
+        )
