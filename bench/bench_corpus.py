@@ -81,9 +81,18 @@ def main() -> int:
         nonlocal findings
         findings = sum(len(linter.lint_bytes(data, name).findings) for name, data in blobs)
 
-    lint_all()  # warm caches shared by both sides (rule import, lxml)
+    from urdflint import config
+
+    no_physics = config.Settings(ignore=("P",))
+
+    def lint_static() -> None:
+        for name, data in blobs:
+            linter.lint_bytes(data, name, no_physics)
+
+    lint_all()  # warm caches shared by both sides (rule import, lxml, Pinocchio, trimesh)
     parse_min, parse_med = best_of(args.repeat, parse_only)
     lint_min, lint_med = best_of(args.repeat, lint_all)
+    static_min, _ = best_of(args.repeat, lint_static)
 
     results: dict[str, object] = {
         "files": len(files),
@@ -104,6 +113,13 @@ def main() -> int:
         f"urdflint, all rules, one process  min {lint_min * 1e3:8.1f} ms   median {lint_med * 1e3:8.1f} ms"
     )
     print(f"  ratio urdflint / lxml parse: {lint_min / parse_min:.1f}x")
+    results.update(
+        urdflint_no_physics_s=static_min, ratio_no_physics_vs_lxml=static_min / parse_min
+    )
+    print(
+        f"urdflint, every rule but P (no Pinocchio build)  min {static_min * 1e3:8.1f} ms  "
+        f"({static_min / parse_min:.1f}x the parse)"
+    )
 
     check_urdf = shutil.which("check_urdf")
     if check_urdf:

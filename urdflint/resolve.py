@@ -48,11 +48,14 @@ def package_name(folder: Path) -> str | None:
     return match.group(1).decode("utf-8", "replace") if match else None
 
 
-def _subdirs(folder: Path) -> list[Path]:
+@lru_cache(maxsize=1024)
+def _subdirs(folder: Path) -> tuple[Path, ...]:
     try:
-        return sorted(p for p in folder.iterdir() if p.is_dir() and not p.name.startswith("."))
+        return tuple(
+            sorted(p for p in folder.iterdir() if p.is_dir() and not p.name.startswith("."))
+        )
     except OSError:
-        return []
+        return ()
 
 
 class Resolver:
