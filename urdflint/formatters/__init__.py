@@ -37,9 +37,14 @@ def _plural(count: int, word: str) -> str:
 
 
 def get(name: str) -> Callable[[Sequence[Finding], RunInfo], str]:
-    from urdflint.formatters import github, json, text
+    from urdflint.formatters import github, json, sarif, text
 
-    return {"text": text.render, "json": json.render, "github": github.render}[name]
+    return {
+        "text": text.render,
+        "json": json.render,
+        "github": github.render,
+        "sarif": sarif.render,
+    }[name]
 
 
-NAMES = ("text", "json", "github")
+NAMES = ("text", "json", "github", "sarif")
