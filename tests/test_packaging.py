@@ -32,6 +32,8 @@ def test_wheel_layout(wheel: zipfile.ZipFile) -> None:
     assert tops == {"urdflint"}
     assert "urdflint/rules/inertial/i005_triangle_inequality.py" in names
     assert "urdflint/server/__init__.py" in names
+    assert "urdflint/server/app.py" in names
+    assert "urdflint/server/static/index.html" in names  # the web page ships with the service
     assert "urdflint/fixtures/rules/I005/bad.urdf" in names  # `urdflint explain` examples
     assert "urdflint/data/gazebo-classic-materials.txt" in names
     entry = wheel.read(next(n for n in names if n.endswith("entry_points.txt"))).decode()

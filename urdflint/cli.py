@@ -124,6 +124,23 @@ def build_parser() -> argparse.ArgumentParser:
 
     explain = sub.add_parser("explain", help="show a rule's page: what, why, how to fix, examples")
     explain.add_argument("rule", metavar="CODE|NAME")
+
+    serve = sub.add_parser(
+        "serve",
+        help="run the HTTP validation service (needs urdflint[server])",
+        description="Run the HTTP service (urdflint.server.app:app) with uvicorn. Limits come "
+        "from URDFLINT_* environment variables: MAX_URDF_BYTES, MAX_ZIP_BYTES, TIMEOUT, "
+        "JOBS, QUEUE (see the README).",
+    )
+    serve.add_argument("--host", default="127.0.0.1", help="address to listen on")
+    serve.add_argument("--port", type=int, default=8000, help="port to listen on")
+    serve.add_argument(
+        "--workers",
+        type=int,
+        default=1,
+        help="server processes (each with its own URDFLINT_JOBS lint workers)",
+    )
+    serve.add_argument("--log-level", default="info", choices=("debug", "info", "warning", "error"))
     return parser
 
 
@@ -216,6 +233,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return run_rules(args)
         if args.command == "info":
             return run_info(args)
+        if args.command == "serve":
+            return run_serve(args)
         return run_explain(args)
     except UsageError as exc:
         print(f"urdflint: error: {exc}", file=sys.stderr)
@@ -454,6 +473,35 @@ def _skipped_note(path: str, skipped: dict[str, tuple[str, ...]], expects: bool)
         "/robot",
         f"pip install 'urdflint[{','.join(extras)}]'",
     )
+
+
+# -- serve ------------------------------------------------------------------------------
+
+
+def run_serve(args: argparse.Namespace) -> int:
+    """Run uvicorn with the service; its imports happen here, never at CLI start."""
+    try:
+        import uvicorn
+    except ImportError:
+        raise UsageError("serve needs the server extra: pip install 'urdflint[server]'") from None
+    if args.workers < 1 or not 0 <= args.port < 65536:
+        raise UsageError("--workers must be at least 1 and --port between 0 and 65535")
+    from urdflint.server.limits import LimitError, Limits
+
+    try:
+        Limits.from_env()
+    except LimitError as exc:
+        raise UsageError(str(exc)) from None
+    uvicorn.run(
+        "urdflint.server.app:app",
+        host=args.host,
+        port=args.port,
+        workers=args.workers,
+        log_level=args.log_level,
+        timeout_keep_alive=5,
+        timeout_graceful_shutdown=10,
+    )
+    return EXIT_OK
 
 
 # -- rules and explain ---------------------------------------------------------------

@@ -1,0 +1,183 @@
+"""The options of ``POST /v1/check``, from the query string and form fields, as CLI settings.
+
+Every option may come as a query parameter or (multipart requests) as a form field; list
+options (``select``, ``ignore``, ``target``, ``xacro_args``, ``q``) take repeated values,
+comma-separated lists, or both, and query and form values add up; for the other options a
+form field wins over the query. They mean what the CLI flags of the same name mean, and
+are applied by the CLI's own :class:`~urdflint.cli.SettingsFinder`, so the service and
+``urdflint check --isolated`` agree exactly:
+
+``select``, ``ignore``    rule codes, names or family letters
+``fail_on``              error | warning | info | never  (decides ``passed``)
+``target``               gazebo-classic | gz-sim | mujoco
+``expect_mass``          ``KG[±TOL]``, e.g. ``12.3`` or ``12.3±2%``
+``expect_com``           ``X,Y,Z[±TOL]``
+``xacro_args``           ``NAME:=VALUE`` pairs, e.g. ``a:=1,b:=2`` (a comma inside a value is
+                         kept when what follows has no ``:=``)
+``q``                    ``JOINT=VALUE`` joint positions for the mass and COM
+``config``               JSON object with ``[tool.urdflint]`` keys (``select``, ``severity``,
+                         ``rules``, ``expect``, ``per-file-ignores``...). ``package-paths`` is
+                         refused: packages come from the meshes zip, never from the
+                         server's disk
+``format``               json (default) | sarif | text | github
+``svg``                  true to add ``"svg": {file: "<svg ...>"}`` (the kinematic tree)
+``filename``             the name to show for a raw XML body (default ``robot.urdf``; a
+                         ``.xacro`` name makes it a xacro file)
+
+Unknown form fields are refused (422), so a misspelt option never goes unnoticed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from urdflint import cli, config, targets
+from urdflint.config import Settings
+
+LISTS = ("select", "ignore", "target", "xacro_args", "q")
+SCALARS = ("fail_on", "expect_mass", "expect_com", "config", "format", "svg", "filename")
+ALIASES = {"targets": "target", "xacro_arg": "xacro_args", "fail": "fail_on"}
+FORMATS = ("json", "sarif", "text", "github")
+TRUE = ("1", "true", "yes", "on")
+FALSE = ("0", "false", "no", "off", "")
+MAX_CONFIG_CHARS = 64 * 1024
+
+
+class OptionError(ValueError):
+    """A malformed option; the message names it (answered with 422)."""
+
+
+@dataclass(frozen=True)
+class Options:
+    settings: Settings
+    fmt: str = "json"
+    svg: bool = False
+    filename: str | None = None
+
+
+def canonical(name: str) -> str | None:
+    key = name.strip().lower().replace("-", "_")
+    key = ALIASES.get(key, key)
+    return key if key in LISTS or key in SCALARS else None
+
+
+def merge(
+    query: Iterable[tuple[str, str]], form: Iterable[tuple[str, str]] = ()
+) -> dict[str, list[str]]:
+    """``{option: [values]}`` from the query (unknown names ignored) and the form (refused)."""
+    values: dict[str, list[str]] = {}
+    for name, value in query:
+        key = canonical(name)
+        if key is not None:
+            values.setdefault(key, []).append(value)
+    from_form: dict[str, list[str]] = {}
+    for name, value in form:
+        key = canonical(name)
+        if key is None:
+            raise OptionError(f"unknown form field {name!r}")
+        from_form.setdefault(key, []).append(value)
+    for key, found in from_form.items():
+        values[key] = values.get(key, []) + found if key in LISTS else found
+    return values
+
+
+def _split(values: Iterable[str]) -> list[str]:
+    return [part.strip() for value in values for part in value.split(",") if part.strip()]
+
+
+def _xacro_pairs(values: Iterable[str]) -> list[tuple[str, str]]:
+    pairs: list[tuple[str, str]] = []
+    for value in values:
+        for piece in value.split(","):
+            if ":=" in piece or not pairs:
+                name, found, arg = piece.partition(":=")
+                if not found or not name.strip():
+                    raise OptionError(f"xacro_args: expected NAME:=VALUE, got {piece!r}")
+                pairs.append((name.strip(), arg.strip()))
+            else:  # a comma inside the previous value
+                name, arg = pairs[-1]
+                pairs[-1] = (name, f"{arg},{piece.strip()}")
+    return pairs
+
+
+def _last(values: Mapping[str, list[str]], key: str) -> str | None:
+    found = values.get(key)
+    return found[-1].strip() if found else None
+
+
+def _typed(key: str, text: str | None, parse: Any) -> Any:
+    if text is None:
+        return None
+    try:
+        return parse(text)
+    except argparse.ArgumentTypeError as exc:
+        raise OptionError(f"{key}: {exc}") from None
+
+
+def _base(text: str | None) -> Settings:
+    if text is None or not text.strip():
+        return Settings()
+    if len(text) > MAX_CONFIG_CHARS:
+        raise OptionError(f"config: over {MAX_CONFIG_CHARS} characters")
+    try:
+        data = json.loads(text)
+    except (ValueError, RecursionError) as exc:
+        raise OptionError(f"config: not valid JSON ({exc})") from None
+    if isinstance(data, dict) and isinstance(data.get("tool"), dict):
+        data = data["tool"].get("urdflint", {})  # a whole pyproject-like object
+    if isinstance(data, dict) and "package-paths" in data:
+        raise OptionError(
+            "config: 'package-paths' is not accepted by the service; upload the packages in "
+            "the meshes zip (its top-level folders and package.xml files are the packages)"
+        )
+    try:
+        return config.from_mapping(data)
+    except config.ConfigError as exc:
+        raise OptionError(f"config: {exc}") from None
+
+
+def parse(values: Mapping[str, list[str]]) -> Options:
+    """Validate the options and build the settings exactly as ``urdflint check`` would."""
+    fmt = (_last(values, "format") or "json").lower()
+    if fmt not in FORMATS:
+        raise OptionError(f"format: must be one of {', '.join(FORMATS)}, not {fmt!r}")
+    if fmt == "sarif" and importlib.util.find_spec("urdflint.formatters.sarif") is None:
+        raise OptionError("format: sarif is not available on this server")
+    svg_text = (_last(values, "svg") or "").lower()
+    if svg_text not in TRUE + FALSE:
+        raise OptionError(f"svg: expected true or false, not {svg_text!r}")
+    fail_on = _last(values, "fail_on")
+    if fail_on is not None and fail_on not in config.FAIL_ON:
+        raise OptionError(f"fail_on: must be one of {', '.join(config.FAIL_ON)}, not {fail_on!r}")
+    target = _split(values.get("target", ()))
+    try:
+        targets.validate(target)
+    except ValueError as exc:
+        raise OptionError(f"target: {exc}") from None
+    q = [_typed("q", part, cli._joint_value) for part in _split(values.get("q", ()))]
+    args = argparse.Namespace(
+        command="check",
+        select=[_split(values["select"])] if "select" in values else [],
+        ignore=[_split(values["ignore"])] if "ignore" in values else [],
+        exit_zero=False,
+        fail_on=fail_on,
+        target=target,
+        xacro_arg=_xacro_pairs(values.get("xacro_args", ())),
+        expect_mass=_typed("expect_mass", _last(values, "expect_mass"), cli._expect_mass),
+        expect_com=_typed("expect_com", _last(values, "expect_com"), cli._expect_com),
+        q=q,
+        isolated=True,
+        config=None,
+    )
+    base = _base(_last(values, "config"))
+    try:
+        finder = cli.SettingsFinder(args)
+    except cli.UsageError as exc:
+        raise OptionError(str(exc).replace("--", "", 1)) from None
+    settings = finder._apply(base)
+    return Options(settings, fmt, svg_text in TRUE, _last(values, "filename"))

@@ -1,0 +1,331 @@
+// urdflint web page: posts the form to /v1/check and shows the JSON it returns.
+// Every string from the response is inserted as text (textContent), never as HTML.
+// The tree SVG is parsed as XML and rebuilt from an allowlist of elements and
+// attributes (see cleanSvg), so even a broken server could not inject script.
+"use strict";
+
+(function () {
+  const SEVERITIES = ["error", "warning", "info"];
+  const PLURAL = { error: "errors", warning: "warnings", info: "infos" };
+  const SVG_NS = "http://www.w3.org/2000/svg";
+  const SVG_TAGS = new Set(["svg", "g", "rect", "circle", "path", "line", "polyline", "text", "tspan", "title"]);
+  const SVG_ATTRS = new Set([
+    "viewBox", "width", "height", "x", "y", "rx", "ry", "cx", "cy", "r", "d", "points",
+    "x1", "y1", "x2", "y2", "fill", "stroke", "stroke-width", "stroke-dasharray",
+    "font-family", "font-size", "font-weight", "font-style", "text-anchor", "role",
+    "aria-label", "class",
+  ]);
+  const STATUS = {
+    413: "The upload is too large.",
+    415: "That kind of upload is not accepted.",
+    422: "The request was rejected.",
+    429: "The server is busy. Try again in a moment.",
+    503: "The server is busy. Try again in a moment.",
+    504: "Checking took too long and was stopped.",
+  };
+
+  const $ = (id) => document.getElementById(id);
+  const form = $("check-form");
+
+  function el(tag, attrs, ...children) {
+    const node = document.createElement(tag);
+    for (const [key, value] of Object.entries(attrs || {})) {
+      if (value !== undefined && value !== null) node.setAttribute(key, value);
+    }
+    for (const child of children) {
+      if (child === null || child === undefined) continue;
+      node.append(child instanceof Node ? child : String(child));
+    }
+    return node;
+  }
+
+  function number(value, digits) {
+    if (typeof value !== "number" || !isFinite(value)) return "—";
+    return Number(value.toPrecision(digits || 4)).toString();
+  }
+
+  // -- the form -------------------------------------------------------------------------
+
+  function mode() {
+    return form.querySelector("input[name=mode]:checked").value;
+  }
+
+  function showMode() {
+    $("file-panel").hidden = mode() !== "file";
+    $("paste-panel").hidden = mode() !== "paste";
+  }
+
+  function buildRequest() {
+    const data = new FormData();
+    if (mode() === "file") {
+      const file = $("urdf-file").files[0];
+      if (!file) throw new Error("Choose a URDF or xacro file first.");
+      data.append("urdf", file, file.name);
+      const meshes = $("meshes-file").files[0];
+      if (meshes) data.append("meshes", meshes, meshes.name);
+    } else {
+      const text = $("urdf-text").value;
+      if (!text.trim()) throw new Error("Paste the URDF or xacro XML first.");
+      const name = /xmlns:xacro\s*=/.test(text) ? "pasted.urdf.xacro" : "pasted.urdf";
+      data.append("urdf", new Blob([text], { type: "application/xml" }), name);
+    }
+    for (const id of ["target", "fail-on", "select", "ignore", "expect-mass", "expect-com", "xacro-args"]) {
+      const input = $(id);
+      const value = input.value.trim();
+      if (value) data.append(input.name, value);
+    }
+    data.append("svg", "true");
+    return data;
+  }
+
+  async function submit(event) {
+    event.preventDefault();
+    hideError();
+    let body;
+    try {
+      body = buildRequest();
+    } catch (problem) {
+      showError(problem.message);
+      return;
+    }
+    const button = $("submit");
+    button.disabled = true;
+    form.setAttribute("aria-busy", "true");
+    $("status").textContent = "Checking…";
+    try {
+      const response = await fetch("/v1/check", {
+        method: "POST",
+        body: body,
+        headers: { Accept: "application/json" },
+      });
+      let payload = null;
+      try {
+        payload = await response.json();
+      } catch (ignored) {
+        payload = null;
+      }
+      if (!response.ok) {
+        const detail = payload && typeof payload.detail === "string" ? payload.detail
+          : payload && Array.isArray(payload.detail) ? payload.detail.map((d) => d.msg || "").join("; ")
+          : "";
+        const retry = response.headers.get("Retry-After");
+        showError(STATUS[response.status] || `The server answered ${response.status}.`,
+          detail + (retry ? ` (retry after ${retry} s)` : ""), response.status);
+        return;
+      }
+      if (!payload || !Array.isArray(payload.findings)) {
+        showError("The server sent an answer this page does not understand.");
+        return;
+      }
+      render(payload);
+      $("status").textContent = "Done.";
+      $("results").scrollIntoView({ behavior: "smooth", block: "start" });
+    } catch (problem) {
+      showError("Could not reach the urdflint server.", String(problem && problem.message || problem));
+    } finally {
+      button.disabled = false;
+      form.removeAttribute("aria-busy");
+      if ($("status").textContent === "Checking…") $("status").textContent = "";
+    }
+  }
+
+  function showError(title, detail, status) {
+    const box = $("error");
+    box.replaceChildren(el("strong", {}, title));
+    if (detail) box.append(el("span", { class: "detail" }, detail));
+    box.dataset.status = status ? String(status) : "";
+    box.hidden = false;
+    $("results").hidden = true;
+  }
+
+  function hideError() {
+    $("error").hidden = true;
+    $("error").replaceChildren();
+  }
+
+  // -- results --------------------------------------------------------------------------
+
+  function render(doc) {
+    const summary = doc.summary || {};
+    const passed = doc.passed === true;
+    const banner = $("banner");
+    banner.dataset.passed = String(passed);
+    $("verdict").textContent = passed ? "Passed" : "Failed";
+    const paths = Object.keys(doc.models || {});
+    $("file-name").textContent = paths.join(", ");
+    $("counts").replaceChildren(...SEVERITIES.map((sev) => {
+      const n = summary[sev] || 0;
+      return el("li", { class: n ? sev : `${sev} zero`, "data-severity": sev, "data-count": n },
+        `${n} ${n === 1 ? sev : PLURAL[sev]}`);
+    }));
+    renderModels(doc.models || {});
+    renderFindings(doc.findings);
+    renderTrees(doc.svg || {});
+    $("results").hidden = false;
+    zoom("auto"); // after showing the results: fitting needs the box's width
+    centreOnRoot();
+  }
+
+  function renderModels(models) {
+    const box = $("summary");
+    box.replaceChildren();
+    const paths = Object.keys(models);
+    if (!paths.length) box.append(el("p", { class: "not-built" }, "No model."));
+    for (const path of paths) {
+      const model = models[path];
+      const part = el("div", { class: "model", "data-path": path, "data-built": String(!!model) });
+      if (paths.length > 1) part.append(el("h3", {}, path));
+      if (!model) {
+        part.append(el("p", { class: "not-built" },
+          "Model not built: Pinocchio could not load it (see the errors) or is not installed."));
+      } else {
+        const com = Array.isArray(model.com) && model.com.length === 3
+          ? el("span", { class: "com" }, ...["x", "y", "z"].map((axis, i) =>
+            el("span", {}, el("abbr", {}, axis), " ", number(model.com[i], 3))))
+          : "—";
+        const rows = [
+          ["Name", model.name], ["Root link", model.root], ["Links", model.links],
+          ["Joints", model.joints], ["DOF", model.dof],
+          ["Mass", typeof model.mass === "number" ? `${number(model.mass)} kg` : "—"],
+          ["Centre of mass (m)", com],
+        ];
+        const list = el("dl");
+        for (const [key, value] of rows) {
+          list.append(el("dt", {}, key),
+            el("dd", { "data-field": key.toLowerCase().replace(/ \(.*\)/, "").replace(/ /g, "-") }, value ?? "—"));
+        }
+        part.append(list);
+      }
+      box.append(part);
+    }
+  }
+
+  function renderFindings(findings) {
+    const table = $("findings");
+    table.querySelectorAll("tbody").forEach((body) => body.remove());
+    $("no-findings").hidden = findings.length > 0;
+    table.hidden = findings.length === 0;
+    const many = new Set(findings.map((f) => f.path)).size > 1;
+    for (const sev of SEVERITIES) {
+      const group = findings.filter((f) => f.severity === sev);
+      if (!group.length) continue;
+      const body = el("tbody", { class: sev, "data-severity": sev });
+      const title = `${group.length} ${group.length === 1 ? sev : PLURAL[sev]}`;
+      body.append(el("tr", { class: "group-row" },
+        el("th", { class: "group", colspan: "4", scope: "rowgroup" }, title[0].toUpperCase() + title.slice(1))));
+      for (const f of group) {
+        const code = el("td", { class: "code" },
+          el("a", { href: `/v1/rules/${encodeURIComponent(f.code)}`, target: "_blank", rel: "noopener" }, f.code),
+          el("span", { class: "rule-name" }, f.name));
+        const problem = el("td", { class: "problem" }, el("p", { class: "message" }, f.message));
+        if (f.fix) problem.append(el("p", { class: "fix" }, f.fix));
+        const line = many ? `${f.path}:${f.line}` : f.line;
+        body.append(el("tr", {
+          class: "finding", "data-code": f.code, "data-line": f.line, "data-severity": f.severity,
+          "data-element": f.element,
+        }, el("td", { class: "num" }, line), code, el("td", { class: "element" }, ...breakable(f.element)), problem));
+      }
+      table.append(body);
+    }
+  }
+
+  function breakable(path) {
+    // "/robot/link[@name='arm']/inertial" with a line-break opportunity before each step
+    const parts = [];
+    String(path).split(/(?=\/)/).forEach((step, i) => {
+      if (i) parts.push(el("wbr"));
+      parts.push(step);
+    });
+    return parts;
+  }
+
+  // -- the tree ---------------------------------------------------------------------------
+
+  function cleanSvg(markup) {
+    const parsed = new DOMParser().parseFromString(markup, "image/svg+xml");
+    const source = parsed.documentElement;
+    if (!source || source.namespaceURI !== SVG_NS || source.localName !== "svg"
+        || parsed.getElementsByTagName("parsererror").length) {
+      return null;
+    }
+    const copy = (node) => {
+      if (node.nodeType === Node.TEXT_NODE) return document.createTextNode(node.nodeValue);
+      if (node.nodeType !== Node.ELEMENT_NODE || node.namespaceURI !== SVG_NS
+          || !SVG_TAGS.has(node.localName)) return null;
+      const out = document.createElementNS(SVG_NS, node.localName);
+      for (const attr of Array.from(node.attributes)) {
+        if (attr.namespaceURI) continue;
+        const name = attr.name;
+        if (SVG_ATTRS.has(name) || /^data-[a-z-]+$/.test(name)) out.setAttribute(name, attr.value);
+      }
+      for (const child of Array.from(node.childNodes)) {
+        const kept = copy(child);
+        if (kept) out.append(kept);
+      }
+      return out;
+    };
+    return copy(source);
+  }
+
+  function renderTrees(svgs) {
+    const box = $("tree");
+    box.replaceChildren();
+    const paths = Object.keys(svgs);
+    for (const path of paths) {
+      if (paths.length > 1) box.append(el("p", { class: "tree-name" }, path));
+      const svg = cleanSvg(String(svgs[path]));
+      if (!svg) {
+        box.append(el("p", { class: "muted" }, "The tree picture could not be read."));
+        continue;
+      }
+      svg.dataset.naturalWidth = svg.getAttribute("width") || "0";
+      box.append(svg);
+    }
+    if (!paths.length) box.append(el("p", { class: "muted" }, "No tree picture was returned."));
+  }
+
+  let scale = 1;
+  let fitting = true; // follow the box's width until the reader zooms
+
+  function zoom(how) {
+    const svgs = $("tree").querySelectorAll("svg");
+    if (!svgs.length) return;
+    const widest = Math.max(...Array.from(svgs, (s) => parseFloat(s.dataset.naturalWidth) || 1));
+    const room = $("tree").clientWidth - 12;
+    fitting = how === "fit" || how === "auto";
+    const fit = room > 0 ? Math.min(1, room / widest) : 1;
+    if (how === "fit") scale = fit;
+    else if (how === "auto") scale = Math.max(fit, 0.6); // big trees: readable, scroll the rest
+    else if (how === "one") scale = 1;
+    else if (how === "in") scale = Math.min(4, scale * 1.25);
+    else if (how === "out") scale = Math.max(0.1, scale / 1.25);
+    for (const svg of svgs) {
+      const natural = parseFloat(svg.dataset.naturalWidth) || 1;
+      svg.style.width = `${Math.round(natural * scale)}px`;
+      svg.removeAttribute("height");
+    }
+  }
+
+  function centreOnRoot() {
+    // a big tree opens scrolled to its (first) root, which sits at the top
+    const box = $("tree");
+    const root = box.querySelector("svg g.link[data-root] rect");
+    if (!root || box.scrollWidth <= box.clientWidth) return;
+    const boxRect = box.getBoundingClientRect();
+    const rootRect = root.getBoundingClientRect();
+    box.scrollLeft += rootRect.left + rootRect.width / 2 - (boxRect.left + boxRect.width / 2);
+  }
+
+  // -- start --------------------------------------------------------------------------------
+
+  form.addEventListener("submit", submit);
+  form.querySelectorAll("input[name=mode]").forEach((radio) => radio.addEventListener("change", showMode));
+  document.querySelectorAll("[data-zoom]").forEach((button) =>
+    button.addEventListener("click", () => zoom(button.dataset.zoom)));
+  window.addEventListener("resize", () => { if (fitting) zoom("auto"); });
+  showMode();
+  fetch("/version").then((r) => (r.ok ? r.json() : null)).then((v) => {
+    const version = v && (v.urdflint || v.version);
+    if (typeof version === "string") $("version").textContent = `v${version}`;
+  }).catch(() => {});
+}());

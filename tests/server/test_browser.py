@@ -1,0 +1,320 @@
+"""The web page in a real headless Chromium: upload, findings table, model, tree, errors.
+
+Needs Selenium 4 and Debian's ``chromium`` and ``chromium-driver`` (``.ci/run`` installs
+them); without them every test here is skipped. The driver is given explicitly, so
+Selenium Manager never runs and nothing is downloaded; the browser starts with a fresh
+profile and its background networking off. The server is the real ``urdflint serve``
+process of ``live_server`` (tests/server/conftest.py) on a free loopback port.
+"""
+
+from __future__ import annotations
+
+import shutil
+import struct
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from tests.conftest import CORPUS, FIXTURES, ROOT
+
+webdriver = pytest.importorskip("selenium.webdriver")
+pytest.importorskip("fastapi")
+pytest.importorskip("uvicorn")
+
+from selenium.common.exceptions import TimeoutException  # noqa: E402
+from selenium.webdriver.chrome.service import Service  # noqa: E402
+from selenium.webdriver.common.by import By  # noqa: E402
+from selenium.webdriver.support.ui import WebDriverWait  # noqa: E402
+
+
+def _find(names: tuple[str, ...], default: str) -> str | None:
+    if Path(default).is_file():
+        return default
+    found = (shutil.which(name) for name in names)
+    return next((path for path in found if path), None)
+
+
+CHROMIUM = _find(("chromium", "chromium-browser"), "/usr/bin/chromium")
+CHROMEDRIVER = _find(("chromedriver",), "/usr/bin/chromedriver")
+pytestmark = pytest.mark.skipif(
+    CHROMIUM is None or CHROMEDRIVER is None,
+    reason="needs chromium and chromedriver (Debian: apt-get install chromium chromium-driver)",
+)
+
+BROKEN = FIXTURES / "models" / "broken_arm.urdf"
+FLAGS = (
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-dev-shm-usage",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-extensions",
+    "--disable-default-apps",
+    "--no-first-run",
+    "--no-default-browser-check",
+    "--window-size=1400,1000",
+)
+
+
+@pytest.fixture(scope="module")
+def base_url(live_server: str) -> str:
+    """The session's ``urdflint serve`` process (tests/server/conftest.py)."""
+    return live_server
+
+
+@pytest.fixture(scope="module")
+def driver(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for flag in FLAGS:
+        options.add_argument(flag)
+    options.add_argument(f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}")
+    browser = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    browser.set_page_load_timeout(60)
+    try:
+        yield browser
+    finally:
+        browser.quit()
+
+
+# -- helpers ----------------------------------------------------------------------------------
+
+
+def check(driver: Any, base_url: str, path: Path | None = None, **fields: str) -> str:
+    """Open the page, fill it in, press Check; ``"results"`` or ``"error"`` when shown."""
+    driver.get(f"{base_url}/")
+    ready = "return document.readyState"
+    WebDriverWait(driver, 20).until(lambda d: d.execute_script(ready) == "complete")
+    driver.execute_script("document.querySelector('details.more').open = true")
+    if path is not None:
+        driver.find_element(By.ID, "urdf-file").send_keys(str(path))
+    for name, value in fields.items():
+        element = driver.find_element(By.ID, name)
+        if element.tag_name == "select":
+            driver.execute_script("arguments[0].value = arguments[1]", element, value)
+        else:
+            element.send_keys(value)
+    driver.find_element(By.ID, "submit").click()
+
+    def shown(d: Any) -> str | bool:
+        for box in ("results", "error"):
+            if d.find_element(By.ID, box).is_displayed():
+                return box
+        return False
+
+    try:
+        return str(WebDriverWait(driver, 90).until(shown))
+    except TimeoutException:  # pragma: no cover - a diagnosis for a failing run
+        pytest.fail(f"no result shown; page status: {driver.find_element(By.ID, 'status').text}")
+
+
+def rows(driver: Any) -> list[dict[str, str]]:
+    """The findings table as data: one dict per row, in page order."""
+    script = """
+      return Array.from(document.querySelectorAll('#findings tr.finding'), (tr) => ({
+        line: tr.dataset.line, code: tr.dataset.code, severity: tr.dataset.severity,
+        element: tr.dataset.element, group: tr.parentElement.dataset.severity,
+        href: tr.querySelector('.code a').getAttribute('href'),
+        name: tr.querySelector('.rule-name').textContent,
+        message: tr.querySelector('.message').textContent,
+        fix: (tr.querySelector('.fix') || {}).textContent || null,
+        shownLine: tr.querySelector('td.num').textContent,
+        shownElement: tr.querySelector('td.element').textContent}));
+    """
+    return list(driver.execute_script(script))
+
+
+def tree(driver: Any) -> dict[str, Any]:
+    script = """
+      const svg = document.querySelector('#tree svg');
+      if (!svg) return null;
+      const pick = (sel, key) => Array.from(svg.querySelectorAll(sel), (g) => ({
+        name: g.getAttribute(key), severity: g.getAttribute('data-severity'),
+        codes: g.getAttribute('data-codes'), extra: g.getAttribute('data-extra'),
+        kind: g.getAttribute('data-kind')}));
+      return {links: pick('g.link', 'data-link'), joints: pick('g.joint', 'data-joint'),
+              width: svg.getBoundingClientRect().width,
+              scripts: svg.querySelectorAll('script, foreignObject').length};
+    """
+    found = driver.execute_script(script)
+    assert found is not None, "no SVG in #tree"
+    return dict(found)
+
+
+def screenshot(driver: Any, target: Path) -> Path:
+    """The whole page as a PNG (the window grown to the page's height); checked non-trivial."""
+    driver.execute_script("window.scrollTo(0, 0)")
+    height = int(driver.execute_script("return document.documentElement.scrollHeight"))
+    driver.set_window_size(1400, min(max(height, 800), 6000))
+    time.sleep(0.3)
+    assert driver.save_screenshot(str(target))
+    data = target.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    width, tall = struct.unpack(">II", data[16:24])
+    assert width >= 1000 and tall >= 800 and len(data) > 30_000
+    driver.set_window_size(1400, 1000)
+    return target
+
+
+# -- tests ------------------------------------------------------------------------------------
+
+
+def test_broken_arm_findings_model_and_tree(driver: Any, base_url: str, tmp_path: Path) -> None:
+    assert check(driver, base_url, BROKEN) == "results"
+    assert driver.find_element(By.ID, "banner").get_attribute("data-passed") == "false"
+    assert driver.find_element(By.ID, "verdict").text == "Failed"
+    assert driver.find_element(By.ID, "file-name").text == "broken_arm.urdf"
+
+    found = rows(driver)
+    pairs = {(r["line"], r["code"]) for r in found}
+    expected = {("24", "X007"), ("33", "J001"), ("37", "J007"), ("44", "I002"), ("45", "I005")}
+    expected |= {("61", "J009"), ("76", "S005"), ("82", "S006"), ("85", "S003"), ("91", "G001")}
+    assert expected <= pairs
+    groups = [r["group"] for r in found]
+    assert groups == sorted(groups, key=["error", "warning", "info"].index)  # errors first
+    assert all(r["group"] == r["severity"] for r in found)
+    j001 = next(r for r in found if r["code"] == "J001")
+    assert j001["href"] == "/v1/rules/J001" and j001["name"] == "missing-limit"
+    assert j001["element"] == j001["shownElement"] == "/robot/joint[@name='shoulder']"
+    assert j001["message"] == "revolute joint 'shoulder' has no <limit>; urdfdom refuses the model"
+    assert j001["fix"] and "<limit" in j001["fix"]
+    for item in driver.find_elements(By.CSS_SELECTOR, "#counts li"):
+        severity, count = item.get_attribute("data-severity"), item.get_attribute("data-count")
+        assert int(count) == sum(r["severity"] == severity for r in found)
+
+    model = driver.find_element(By.CSS_SELECTOR, "#summary .model")
+    assert model.get_attribute("data-built") == "false"  # urdfdom (so Pinocchio) refuses it
+    assert "not built" in model.text
+
+    picture = tree(driver)
+    links = {item["name"]: item for item in picture["links"]}
+    joints = {item["name"]: item for item in picture["joints"]}
+    assert set(links) == {"base_footprint", "base_link", "upper_arm", "forearm", "hand"}
+    assert set(joints) == {"base_joint", "shoulder", "elbow", "forearm_brace", "wrist"}
+    assert links["upper_arm"]["severity"] == "error" and "I002" in links["upper_arm"]["codes"]
+    assert links["base_link"]["severity"] == "warning"
+    assert links["hand"]["kind"] == "missing"
+    assert joints["forearm_brace"]["extra"] == "true" and joints["wrist"]["severity"] == "error"
+    assert links["base_footprint"]["severity"] is None
+    assert picture["scripts"] == 0 and picture["width"] > 100
+
+    screenshot(driver, tmp_path / "broken_arm.png")
+
+
+@pytest.mark.skipif(not (CORPUS / "spot" / "model.urdf").is_file(), reason="needs the corpus")
+def test_corpus_robot_matches_the_api(driver: Any, base_url: str, tmp_path: Path) -> None:
+    httpx = pytest.importorskip("httpx")
+    path = CORPUS / "spot" / "model.urdf"
+    assert check(driver, base_url, path, **{"target": "gz-sim"}) == "results"
+    with path.open("rb") as handle:
+        answer = httpx.post(
+            f"{base_url}/v1/check",
+            files={"urdf": ("model.urdf", handle, "application/xml")},
+            data={"target": "gz-sim"},
+            timeout=120,
+        )
+    assert answer.status_code == 200
+    api = answer.json()
+    found = rows(driver)
+    order = {"error": 0, "warning": 1, "info": 2}
+    expected = sorted(api["findings"], key=lambda f: order[f["severity"]])  # stable: by line
+    assert [(r["line"], r["code"], r["message"]) for r in found] == [
+        (str(f["line"]), f["code"], f["message"]) for f in expected
+    ]
+    assert any(r["code"] == "I001" and r["severity"] == "error" for r in found)
+    passed = driver.find_element(By.ID, "banner").get_attribute("data-passed")
+    assert passed == str(api["passed"]).lower()
+
+    model = api["models"]["model.urdf"]
+    summary = driver.find_element(By.ID, "summary")
+    if model is None:
+        assert "not built" in summary.text
+    else:
+        fields = {
+            dd.get_attribute("data-field"): dd.text
+            for dd in summary.find_elements(By.CSS_SELECTOR, "dd")
+        }
+        assert fields["name"] == model["name"] == "spot"
+        assert fields["root-link"] == model["root"] and fields["dof"] == str(model["dof"])
+        assert fields["mass"].endswith(" kg")
+
+    picture = tree(driver)
+    links = {item["name"]: item for item in picture["links"]}
+    assert len(links) == 18
+    flagged = {r["element"].split("'")[1] for r in found if r["code"] == "I001"}
+    assert flagged and all(links[name]["severity"] == "error" for name in flagged)
+
+    screenshot(driver, tmp_path / "spot.png")
+
+
+def test_pasted_xml_that_is_not_well_formed(driver: Any, base_url: str) -> None:
+    driver.get(f"{base_url}/")
+    driver.find_element(By.XPATH, "//input[@name='mode'][@value='paste']/parent::label").click()
+    area = driver.find_element(By.ID, "urdf-text")
+    assert area.is_displayed() and not driver.find_element(By.ID, "urdf-file").is_displayed()
+    area.send_keys('<robot name="r">\n  <link name="a">\n</robot>\n')
+    driver.find_element(By.ID, "submit").click()
+    WebDriverWait(driver, 60).until(lambda d: d.find_element(By.ID, "results").is_displayed())
+    found = rows(driver)
+    assert [(r["code"], r["severity"]) for r in found] == [("X001", "error")]
+    assert driver.find_element(By.ID, "file-name").text == "pasted.urdf"
+    assert "No kinematic tree" in driver.find_element(By.ID, "tree").text
+
+
+def test_a_rejected_request_shows_the_reason(driver: Any, base_url: str) -> None:
+    assert check(driver, base_url, BROKEN, **{"expect-mass": "heavy"}) == "error"
+    alert = driver.find_element(By.ID, "error")
+    assert alert.get_attribute("role") == "alert"
+    assert alert.get_attribute("data-status") == "422"
+    assert "rejected" in alert.text and "heavy" in alert.text
+    assert not driver.find_element(By.ID, "results").is_displayed()
+
+
+def test_the_form_says_what_is_missing(driver: Any, base_url: str) -> None:
+    assert check(driver, base_url) == "error"
+    assert "Choose a URDF or xacro file" in driver.find_element(By.ID, "error").text
+
+
+def test_the_page_loads_nothing_from_elsewhere(driver: Any, base_url: str) -> None:
+    driver.get(f"{base_url}/")
+    urls = driver.execute_script(
+        "return performance.getEntriesByType('resource').map((e) => e.name)"
+    )
+    assert urls and all(url.startswith(base_url) for url in urls)
+    html = (ROOT / "server" / "static" / "index.html").read_text()
+    assert "http://" not in html.replace("http://www.w3.org", "")
+    assert "https://" not in html
+
+
+HOSTILE = '<img src=x onerror="window.pwned=1"><script>window.pwned=2</script>'
+
+
+def test_hostile_names_stay_text(driver: Any, base_url: str) -> None:
+    name = HOSTILE.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    name = name.replace('"', "&quot;")
+    urdf = (
+        '<robot name="r">\n  <link name="base"/>\n'
+        f'  <link name="{name}"/>\n'
+        f'  <joint name="{name}" type="fixed"><parent link="base"/><child link="{name}"/></joint>\n'
+        "</robot>\n"
+    )
+    driver.get(f"{base_url}/")
+    driver.find_element(By.XPATH, "//input[@name='mode'][@value='paste']/parent::label").click()
+    driver.execute_script("document.getElementById('urdf-text').value = arguments[0]", urdf)
+    driver.find_element(By.ID, "submit").click()
+    WebDriverWait(driver, 60).until(lambda d: d.find_element(By.ID, "results").is_displayed())
+    time.sleep(0.5)  # give an injected handler the chance it must not get
+    assert driver.execute_script("return window.pwned === undefined")
+    assert not driver.find_elements(By.CSS_SELECTOR, "#results img, #results script")
+    found = rows(driver)
+    assert any(r["code"] == "J011" and HOSTILE in r["message"] for r in found)
+    assert driver.find_element(By.ID, "verdict").text == "Passed"  # one info only
+    picture = tree(driver)
+    assert HOSTILE in {item["name"] for item in picture["links"]}
+    assert HOSTILE in {item["name"] for item in picture["joints"]}
+    assert picture["scripts"] == 0
