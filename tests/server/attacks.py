@@ -20,6 +20,10 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
+from urdflint.server.worker import TETRA
+
+from tests.test_hostile_input import BILLION_LAUGHS
+
 SECRET = "s3cr3t-do-not-leak"  # set in the live server's environment
 LEAK_MARKERS = ("root:x:0:0", "root:*:0:0", "/bin/bash", "/usr/sbin/nologin", SECRET, "lollollol")
 
@@ -48,52 +52,9 @@ ROBOT = """<?xml version="1.0"?>
 """
 BOX = '<box size="0.1 0.1 0.3"/>'
 
-STL = b"""solid t
-facet normal 0 0 -1
- outer loop
-  vertex 0 0 0
-  vertex 0.1 0 0
-  vertex 0 0.1 0
- endloop
-endfacet
-facet normal 0 -1 0
- outer loop
-  vertex 0 0 0
-  vertex 0 0 0.1
-  vertex 0.1 0 0
- endloop
-endfacet
-facet normal -1 0 0
- outer loop
-  vertex 0 0 0
-  vertex 0 0.1 0
-  vertex 0 0 0.1
- endloop
-endfacet
-facet normal 1 1 1
- outer loop
-  vertex 0.1 0 0
-  vertex 0 0 0.1
-  vertex 0 0.1 0
- endloop
-endfacet
-endsolid t
-"""
+STL = TETRA.encode()  # the tetrahedron /readyz loads, as a mesh file
 
-LAUGHS = """<?xml version="1.0"?>
-<!DOCTYPE lolz [
- <!ENTITY lol "lol">
- <!ENTITY lol2 "&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;">
- <!ENTITY lol3 "&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;">
- <!ENTITY lol4 "&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;">
- <!ENTITY lol5 "&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;&lol4;">
- <!ENTITY lol6 "&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;&lol5;">
- <!ENTITY lol7 "&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;&lol6;">
- <!ENTITY lol8 "&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;&lol7;">
- <!ENTITY lol9 "&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;&lol8;">
-]>
-<robot name="&lol9;"><link name="a"/></robot>
-"""
+LAUGHS = BILLION_LAUGHS
 
 
 def robot(geometry: str = BOX) -> str:
