@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import enum
+import hashlib
 from dataclasses import asdict, dataclass
 
 
@@ -45,6 +46,12 @@ class Finding:
 
     def sort_key(self) -> tuple[str, int, int, str, str]:
         return (self.path, self.line, self.column, self.code, self.message)
+
+    def fingerprint(self) -> str:
+        """A line-independent identity: path, code and element path (not the line or message),
+        so a finding keeps it when lines above it move or the message wording changes."""
+        key = "\0".join((self.path.replace("\\", "/"), self.code, self.element))
+        return hashlib.sha256(key.encode("utf-8")).hexdigest()[:32]
 
     def to_dict(self) -> dict[str, object]:
         data = asdict(self)
