@@ -111,6 +111,21 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="FILE",
         help="write the expanded URDF of a single xacro input to FILE",
     )
+    check.add_argument(
+        "--output",
+        type=Path,
+        metavar="FILE",
+        help="write the --format output to FILE instead of stdout",
+    )
+    check.add_argument(
+        "--report",
+        action="append",
+        default=[],
+        metavar="FORMAT:PATH",
+        help="also write FORMAT (" + ", ".join(formatters.NAMES) + ") to PATH (repeatable), "
+        "e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
+    )
+    _gate_options(check)
 
     info = sub.add_parser("info", help="the model: tree, per-link masses, total mass, COM, DOF")
     info.add_argument("path", metavar="PATH", help="a URDF or xacro file")
@@ -168,6 +183,31 @@ def _model_options(parser: argparse.ArgumentParser) -> None:
         default=[],
         metavar="NAME:=VALUE",
         help="argument for xacro files (repeatable)",
+    )
+
+
+def _gate_options(parser: argparse.ArgumentParser) -> None:
+    """Baselines and --changed-since (urdflint.baseline, urdflint.changed)."""
+    baseline = parser.add_mutually_exclusive_group()
+    baseline.add_argument(
+        "--write-baseline",
+        type=Path,
+        metavar="FILE",
+        help="record the current findings in FILE (JSON) and exit 0",
+    )
+    baseline.add_argument(
+        "--baseline",
+        type=Path,
+        metavar="FILE",
+        help="report and fail only on findings not recorded in FILE; "
+        "recorded ones that no longer occur are reported as U005",
+    )
+    parser.add_argument(
+        "--changed-since",
+        "--diff-only",
+        dest="changed_since",
+        metavar="REF",
+        help="lint only the *.urdf/*.xacro files among PATHs changed since git REF (or untracked)",
     )
 
 
@@ -353,6 +393,8 @@ def run_check(args: argparse.Namespace) -> int:
     except config.ConfigError as exc:
         raise UsageError(str(exc)) from None
     files, errors = collect(args.paths)
+    files = _changed_only(args, files)
+    accepted = _load_baseline(args)
     context = _context(args)
     findings: list[Finding] = []
     checked: list[str] = []
@@ -363,6 +405,8 @@ def run_check(args: argparse.Namespace) -> int:
     expects = False
     if args.emit_expanded and not (len(files) == 1 and linter.is_xacro(files[0])):
         raise UsageError("--emit-expanded needs exactly one xacro file")
+    reports = _reports(args)
+    ran: dict[str, tuple[str, ...]] = {}
     for name in files:
         is_stdin = name == "-"
         shown = args.stdin_filename if is_stdin else name
@@ -381,6 +425,7 @@ def run_check(args: argparse.Namespace) -> int:
             errors.append(f"{shown}: cannot read: {exc.strerror or exc}")
             continue
         checked.append(shown)
+        ran[shown] = result.ran
         findings.extend(result.findings)
         skipped.update(result.skipped)
         crashed = crashed or result.crashed
@@ -393,16 +438,22 @@ def run_check(args: argparse.Namespace) -> int:
     if skipped and checked and (gate or "U004" in finder.for_folder(Path.cwd()).enabled()):
         findings.append(_skipped_note(checked[0], skipped, expects))
     findings.sort(key=Finding.sort_key)
+    findings = _baseline_step(args, accepted, findings, ran)
 
     for message in errors:
         print(f"urdflint: error: {message}", file=sys.stderr)
     fmt = args.format
     if fmt == "auto":
         fmt = "github" if os.environ.get("GITHUB_ACTIONS") == "true" else "text"
-    run = formatters.RunInfo(__version__, tuple(checked), models if fmt == "json" else {})
-    sys.stdout.write(formatters.get(fmt)(findings, run))
-    sys.stdout.flush()
+    run = formatters.RunInfo(__version__, tuple(checked), models, fail_on, ran)
+    _write_outputs([(fmt, args.output), *reports], findings, run)
 
+    if not files and not errors and args.changed_since:
+        print(
+            f"urdflint: no *.urdf or *.xacro files changed since {args.changed_since}",
+            file=sys.stderr,
+        )
+        return EXIT_OK
     if errors or crashed or not files:
         if not files and not errors:
             print("urdflint: error: no *.urdf or *.xacro files found", file=sys.stderr)
@@ -411,6 +462,105 @@ def run_check(args: argparse.Namespace) -> int:
     if threshold is not None and any(f.severity >= threshold for f in findings):
         return EXIT_FINDINGS
     return EXIT_OK
+
+
+def _changed_only(args: argparse.Namespace, files: list[str]) -> list[str]:
+    """``--changed-since``: the files among ``files`` (and folder PATHs) git reports as changed."""
+    if not args.changed_since:
+        return files
+    from urdflint import changed
+
+    if args.write_baseline:
+        raise UsageError(
+            "--write-baseline records every finding; do not combine it with --changed-since"
+        )
+    existing = [Path(p) for p in args.paths if p != "-" and Path(p).exists()]
+    try:
+        found = changed.changed_files(args.changed_since, existing[0] if existing else Path.cwd())
+    except changed.ChangedError as exc:
+        raise UsageError(str(exc)) from None
+    return changed.select(files, args.paths, found, SKIP_DIRS)
+
+
+def _load_baseline(args: argparse.Namespace) -> Any:
+    if args.baseline is None:
+        return None
+    from urdflint import baseline
+
+    try:
+        return baseline.load(args.baseline)
+    except baseline.BaselineError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def _baseline_step(
+    args: argparse.Namespace,
+    accepted: Any,
+    findings: list[Finding],
+    ran: dict[str, tuple[str, ...]],
+) -> list[Finding]:
+    """``--write-baseline``: record and accept everything; ``--baseline``: keep only new
+    findings, plus a U005 note per stale entry."""
+    if not args.write_baseline and accepted is None:
+        return findings
+    from urdflint import baseline
+
+    if args.write_baseline:
+        try:
+            count = baseline.write(args.write_baseline, findings)
+        except baseline.BaselineError as exc:
+            raise UsageError(str(exc)) from None
+        print(f"urdflint: recorded {count} finding(s) in {args.write_baseline}", file=sys.stderr)
+        return [f for f in findings if f.code in baseline.UNRECORDED]
+    new, stale = baseline.apply(accepted, findings, ran)
+    return sorted(new + stale, key=Finding.sort_key)
+
+
+def _writable(path: Path, option: str) -> Path:
+    """``path`` if a file can be written there (checked before linting), else a usage error."""
+    if path.is_dir():
+        raise UsageError(f"{option} {path}: is a directory")
+    folder = path.parent
+    if not folder.is_dir():
+        raise UsageError(f"{option} {path}: no such directory {str(folder)!r}")
+    if not os.access(folder, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise UsageError(f"{option} {path}: not writable")
+    return path
+
+
+def _reports(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """``--report FORMAT:PATH`` values (and ``--output``), validated before any linting."""
+    reports: list[tuple[str, Path]] = []
+    seen = {_writable(args.output, "--output").resolve()} if args.output else set()
+    for value in args.report:
+        name, found, target = value.partition(":")
+        if not found or not target or not name:
+            raise UsageError(f"--report {value!r}: expected FORMAT:PATH, e.g. sarif:urdflint.sarif")
+        if name not in formatters.NAMES:
+            known = ", ".join(formatters.NAMES)
+            raise UsageError(f"--report {value!r}: unknown format {name!r} (use {known})")
+        path = _writable(Path(target), "--report")
+        if path.resolve() in seen:
+            raise UsageError(f"--report {value!r}: {target} is written twice")
+        seen.add(path.resolve())
+        reports.append((name, path))
+    return reports
+
+
+def _write_outputs(
+    outputs: Sequence[tuple[str, Path | None]], findings: list[Finding], run: formatters.RunInfo
+) -> None:
+    """Render each (format, file) of the run; ``None`` = stdout."""
+    for name, path in outputs:
+        text = formatters.get(name)(findings, run if name == "json" else replace(run, models={}))
+        if path is None:
+            sys.stdout.write(text)
+            sys.stdout.flush()
+            continue
+        try:
+            path.write_text(text, encoding="utf-8")
+        except OSError as exc:
+            raise UsageError(f"{path}: cannot write: {exc.strerror or exc}") from None
 
 
 def _context(args: argparse.Namespace) -> Any:

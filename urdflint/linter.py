@@ -38,6 +38,7 @@ class Result:
     findings: list[Finding]
     document: Document | None = None
     skipped: dict[str, tuple[str, ...]] = field(default_factory=dict)  # code -> missing modules
+    ran: tuple[str, ...] = ()  # codes of the rules that ran to completion on the document
 
     @property
     def crashed(self) -> bool:
@@ -98,6 +99,7 @@ def lint_document(doc: Document, settings: Settings) -> Result:
     enabled = settings.enabled() - settings.ignored_for(doc.path)
     raw: list[tuple[Rule, Hit]] = []
     skipped: dict[str, tuple[str, ...]] = {}
+    ran: list[str] = []
     for code in sorted(enabled):
         rule = rules[code]
         if rule.requires_robot and not doc.ok:
@@ -112,12 +114,16 @@ def lint_document(doc: Document, settings: Settings) -> Result:
         if missing:
             skipped[code] = missing
             continue
-        raw.extend(_run(rule, doc, settings))
+        hits = _run(rule, doc, settings)
+        raw.extend(hits)
+        if not (code != "U001" and hits and hits[0][0].code == "U001"):
+            ran.append(code)  # a crashed rule is reported by its U001 error instead
 
     directives: list[suppress.Directive] = []
     if doc.ok:
         directives, malformed = suppress.parse(doc.robot)
         if "U003" in enabled:
+            ran.append("U003")
             raw.extend((rules["U003"], Hit(m.comment, m.message)) for m in malformed)
 
     findings: list[Finding] = []
@@ -131,9 +137,10 @@ def lint_document(doc: Document, settings: Settings) -> Result:
             continue
         findings.append(stamp(doc, rule, hit, settings))
     if "U002" in enabled:
+        ran.append("U002")
         findings.extend(_unused(doc, directives, enabled, settings))
     findings.sort(key=Finding.sort_key)
-    return Result(doc.path, findings, doc, skipped)
+    return Result(doc.path, findings, doc, skipped, tuple(sorted(ran)))
 
 
 def _run(rule: Rule, doc: Document, settings: Settings) -> list[tuple[Rule, Hit]]:

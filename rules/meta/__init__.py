@@ -5,4 +5,5 @@ from urdflint.rules.meta import (  # noqa: F401
     u002_unused_suppression,
     u003_invalid_suppression,
     u004_rule_skipped,
+    u005_stale_baseline_entry,
 )

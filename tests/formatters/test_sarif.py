@@ -10,13 +10,12 @@ from typing import Any
 
 import pytest
 
-from tests.conftest import FIXTURES, ROOT, SHARED
+from tests.conftest import FIXTURES, ROOT, corpus_models, needs_corpus
 from urdflint import __version__, registry
 from urdflint.finding import Finding, Severity
 from urdflint.formatters import NAMES, RunInfo, get, sarif
 
-SCHEMA = SHARED / "data" / "sarif-schema-2.1.0.json"
-needs_schema = pytest.mark.skipif(not SCHEMA.is_file(), reason="../shared/data SARIF schema absent")
+SCHEMA = ROOT / "tests" / "data" / "sarif-schema-2.1.0.json"  # the OASIS schema, shipped
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"
 
 
@@ -29,7 +28,8 @@ def _finding(code: str, severity: Severity, message: str, path: str = "robots/ar
 
 
 def _validate(log: dict[str, object]) -> None:
-    jsonschema = pytest.importorskip("jsonschema")
+    import jsonschema
+
     schema = json.loads(SCHEMA.read_text(encoding="utf-8"))
     validator = jsonschema.validators.validator_for(schema)(schema)
     errors = sorted(validator.iter_errors(log), key=lambda e: list(e.path))
@@ -53,12 +53,10 @@ def test_registered_as_a_format() -> None:
     assert get("sarif") is sarif.render
 
 
-@needs_schema
 def test_cli_output_on_a_broken_model_validates() -> None:
     _validate(_cli_sarif(str(BROKEN.relative_to(ROOT))))
 
 
-@needs_schema
 def test_empty_run_validates() -> None:
     log = json.loads(sarif.render([], RunInfo(__version__, ("a.urdf",))))
     _validate(log)
@@ -66,7 +64,6 @@ def test_empty_run_validates() -> None:
     assert run["results"] == [] and run["tool"]["driver"]["rules"] == []
 
 
-@needs_schema
 def test_special_characters_survive_and_validate() -> None:
     message = "link 'a\"b' has <mass> & \u00b5 = 1e-9 kg·m² \\ %0A\nsecond line \U0001f916"
     findings = [_finding("I002", Severity.ERROR, message, path="my robots/ärm #1.urdf")]
@@ -103,7 +100,9 @@ def test_structure_of_a_real_run() -> None:
         assert rules[result["ruleIndex"]]["id"] == result["ruleId"]
         assert result["level"] in {"error", "warning", "note"}
         assert result["message"]["text"]
-        assert "partialFingerprints" not in result and "fingerprints" not in result
+        assert "fingerprints" not in result
+        assert set(result["partialFingerprints"]) == {sarif.FINGERPRINT_KEY}
+        assert "primaryLocationLineHash" not in result["partialFingerprints"]
         (location,) = result["locations"]
         physical = location["physicalLocation"]
         assert physical["artifactLocation"]["uri"] == "fixtures/models/broken_arm.urdf"
@@ -182,9 +181,54 @@ def test_every_rule_has_a_describable_page() -> None:
         assert len(rule["name"]) <= 255
 
 
-@needs_schema
 def test_the_schema_check_is_not_vacuous() -> None:
     log = sarif.document([_finding("J001", Severity.ERROR, "x")], RunInfo(__version__))
     del log["runs"][0]["results"][0]["message"]
     with pytest.raises(AssertionError, match="'message' is a required property"):
         _validate(log)
+
+
+def test_schema_is_the_official_one() -> None:
+    schema = json.loads(SCHEMA.read_text(encoding="utf-8"))
+    assert schema["id"].startswith("https://docs.oasis-open.org/sarif/sarif/v2.1.0/")
+    assert schema["properties"]["version"]["enum"] == ["2.1.0"]
+
+
+def test_partial_fingerprint_ignores_line_and_message() -> None:
+    a = _finding("J001", Severity.ERROR, "one")
+    moved = Finding(a.path, 99, 1, a.code, a.name, a.severity, "reworded", a.element, a.fix)
+    other = Finding(a.path, 12, 5, a.code, a.name, a.severity, "one", "/robot/joint[@name='k']")
+    prints = [
+        sarif.document([f], RunInfo("0"))["runs"][0]["results"][0]["partialFingerprints"]
+        for f in (a, moved, other)
+    ]
+    assert prints[0] == prints[1] == {sarif.FINGERPRINT_KEY: a.fingerprint()}
+    assert prints[2] != prints[0]
+
+
+def test_paths_are_relative_to_the_repository_root(tmp_path: Path) -> None:
+    (tmp_path / ".git").mkdir()
+    sub = tmp_path / "robots" / "arm"
+    sub.mkdir(parents=True)
+    (sub / "model.urdf").write_text("<robot name='r'/>", encoding="utf-8")
+    assert sarif.artifact_uri("model.urdf", cwd=sub) == "robots/arm/model.urdf"
+    assert sarif.artifact_uri("./arm/model.urdf", cwd=sub.parent) == "robots/arm/model.urdf"
+    assert sarif.artifact_uri(str(sub / "model.urdf"), cwd=sub) == "robots/arm/model.urdf"
+    # a name that is no file here (stdin, a service upload) is kept as given
+    assert sarif.artifact_uri("<stdin>", cwd=sub) == "%3Cstdin%3E"
+    assert sarif.artifact_uri("/elsewhere/x.urdf", cwd=sub) == "file:///elsewhere/x.urdf"
+
+
+@needs_corpus
+def test_sarif_of_the_whole_corpus_validates() -> None:
+    models = corpus_models()
+    log = _cli_sarif(*(str(m) for m in models))
+    _validate(log)
+    (run,) = log["runs"]
+    assert run["results"], "the corpus has findings"
+    uris = {
+        r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for r in run["results"]
+    }
+    assert uris <= {sarif.artifact_uri(str(m), cwd=ROOT) for m in models}
+    for result in run["results"]:
+        assert len(result["partialFingerprints"][sarif.FINGERPRINT_KEY]) == 32

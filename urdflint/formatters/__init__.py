@@ -16,6 +16,8 @@ class RunInfo:
     tool_version: str
     files: tuple[str, ...] = ()
     models: dict[str, Any] = field(default_factory=dict)
+    fail_on: str = "error"  # lowest failing severity, or "never" (JUnit failures)
+    rules: dict[str, tuple[str, ...]] = field(default_factory=dict)  # path -> rule codes run
 
     def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
         counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}
@@ -37,14 +39,15 @@ def _plural(count: int, word: str) -> str:
 
 
 def get(name: str) -> Callable[[Sequence[Finding], RunInfo], str]:
-    from urdflint.formatters import github, json, sarif, text
+    from urdflint.formatters import github, json, junit, sarif, text
 
     return {
         "text": text.render,
         "json": json.render,
         "github": github.render,
         "sarif": sarif.render,
+        "junit": junit.render,
     }[name]
 
 
-NAMES = ("text", "json", "github", "sarif")
+NAMES = ("text", "json", "github", "sarif", "junit")

@@ -2,15 +2,26 @@
 
 One run, one tool (urdflint). ``rules`` lists the rules that produced results,
 sorted by code, and each result points at its rule by ``ruleId`` and
-``ruleIndex``. Locations are the file as shown (a relative POSIX URI when the
-path is relative or under the working directory), the element's start line and
-the column of its start tag; the element path goes into a logical location.
-No ``partialFingerprints``: the upload-sarif action computes them.
+``ruleIndex``. Locations are the file as a URI relative to the repository root (see
+:func:`artifact_uri`), the element's start line and the column of its start
+tag; the element path goes into a logical location.
+
+Fingerprints: each result carries ``partialFingerprints`` =
+``{"urdflintFingerprint/v1": Finding.fingerprint()}``, a hash of path, rule code
+and element path -- not the line, so a finding keeps its identity when lines
+above it move. SARIF allows any key here (a ``name/vN`` versioned string).
+GitHub code scanning matches alerts only on ``primaryLocationLineHash``, which
+the ``upload-sarif`` action still computes and adds next to ours (it fills that
+key only when absent), so we deliberately do not emit ``primaryLocationLineHash``
+(a value not computed GitHub's way would be flagged as inconsistent). Other
+consumers (SARIF viewers, DefectDojo, baselines) can use our key to follow a
+finding across edits.
 """
 
 from __future__ import annotations
 
 import json
+import posixpath
 from collections.abc import Sequence
 from pathlib import Path, PurePosixPath, PureWindowsPath
 from typing import Any
@@ -38,6 +49,7 @@ FAMILY_TAGS = {
     "P": "physics",
     "U": "urdflint",
 }
+FINGERPRINT_KEY = "urdflintFingerprint/v1"
 MAX_DESCRIPTION = 1024  # GitHub's cap on shortDescription/fullDescription text
 
 
@@ -87,22 +99,46 @@ def _rule_descriptor(code: str, sample: Finding) -> dict[str, Any]:
     }
 
 
-def artifact_uri(path: str, cwd: Path | None = None) -> str:
-    """The file as a URI reference: relative POSIX when possible, else ``file://``."""
+def repo_root(cwd: Path) -> Path | None:
+    """The git top-level holding ``cwd`` (a ``.git`` folder or worktree file), if any."""
+    for folder in (cwd, *cwd.parents):
+        if (folder / ".git").exists():
+            return folder
+    return None
+
+
+def artifact_uri(path: str, cwd: Path | None = None, root: Path | None = None) -> str:
+    """The file as a URI reference: relative POSIX when possible, else ``file://``.
+
+    Relative to ``root`` (default: the git top-level holding the working directory,
+    so ``cd robots && urdflint check .`` still gives ``robots/arm.urdf``, which is
+    what GitHub code scanning resolves against the checkout), else to ``cwd``. A
+    relative name that is no file under ``cwd`` (``<stdin>``, a service upload
+    name) is kept as given; an absolute path outside the base stays a file URI.
+    """
     if "\\" in path and PureWindowsPath(path).is_absolute():
         return PureWindowsPath(path).as_uri()
+    here = (cwd or Path.cwd()).resolve()
     posix = PurePosixPath(path.replace("\\", "/"))
-    if posix.is_absolute():
-        base = PurePosixPath((cwd or Path.cwd()).resolve().as_posix())
+    if not posix.is_absolute():
+        if root is None and not (here / posix.as_posix()).is_file():
+            return _relative_uri(posix)
+        posix = PurePosixPath(posixpath.normpath(PurePosixPath(here.as_posix()) / posix))
+    base = root.resolve() if root is not None else (repo_root(here) or here)
+    for candidate in (PurePosixPath(base.as_posix()), PurePosixPath(here.as_posix())):
         try:
-            posix = posix.relative_to(base)
+            return _relative_uri(posix.relative_to(candidate))
         except ValueError:
-            return posix.as_uri()
+            continue
+    return posix.as_uri()
+
+
+def _relative_uri(posix: PurePosixPath) -> str:
     parts = [p for p in posix.parts if p != "."]
     return quote("/".join(parts) or ".", safe="/")
 
 
-def _result(finding: Finding, index: int) -> dict[str, Any]:
+def _result(finding: Finding, index: int, uri: str) -> dict[str, Any]:
     result: dict[str, Any] = {
         "ruleId": finding.code,
         "ruleIndex": index,
@@ -111,7 +147,7 @@ def _result(finding: Finding, index: int) -> dict[str, Any]:
         "locations": [
             {
                 "physicalLocation": {
-                    "artifactLocation": {"uri": artifact_uri(finding.path)},
+                    "artifactLocation": {"uri": uri},
                     "region": {
                         "startLine": finding.line,
                         "startColumn": finding.column,
@@ -121,6 +157,7 @@ def _result(finding: Finding, index: int) -> dict[str, Any]:
                 "logicalLocations": [{"fullyQualifiedName": finding.element, "kind": "element"}],
             }
         ],
+        "partialFingerprints": {FINGERPRINT_KEY: finding.fingerprint()},
     }
     if finding.fix:
         result["properties"] = {"fix": finding.fix}
@@ -134,6 +171,8 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, Any]:
         samples.setdefault(finding.code, finding)
     codes = sorted(samples)
     index = {code: i for i, code in enumerate(codes)}
+    cwd = Path.cwd().resolve()
+    uris = {path: artifact_uri(path, cwd) for path in {f.path for f in findings}}
     return {
         "$schema": SCHEMA,
         "version": "2.1.0",
@@ -148,7 +187,7 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, Any]:
                     }
                 },
                 "columnKind": "unicodeCodePoints",
-                "results": [_result(f, index[f.code]) for f in findings],
+                "results": [_result(f, index[f.code], uris[f.path]) for f in findings],
             }
         ],
     }
