@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import CORPUS, needs_corpus
+from tests.test_cli import NO_LIMIT
 from urdflint.baseline import relative
 from urdflint.cli import main
 
@@ -27,23 +28,6 @@ TWO_BAD_NUMBERS = """<?xml version="1.0"?>
 </robot>
 """
 
-NO_LIMIT = """<?xml version="1.0"?>
-<robot name="arm">
-  <link name="base_link"/>
-  <joint name="shoulder" type="revolute">
-    <origin xyz="0 0 0.1"/>
-    <parent link="base_link"/>
-    <child link="upper_arm"/>
-    <axis xyz="0 0 1"/>
-  </joint>
-  <link name="upper_arm">
-    <inertial>
-      <mass value="1.0"/>
-      <inertia ixx="0.00833" ixy="0" ixz="0" iyy="0.00833" iyz="0" izz="0.00167"/>
-    </inertial>
-  </link>
-</robot>
-"""
 LIMIT = '<axis xyz="0 0 1"/>\n    <limit lower="-1" upper="1" effort="10" velocity="1"/>'
 
 
