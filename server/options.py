@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from urdflint import cli, config, targets
+from urdflint import options as values_of
 from urdflint.config import Settings
 
 LISTS = ("select", "ignore", "target", "xacro_args", "q")
@@ -159,7 +160,7 @@ def parse(values: Mapping[str, list[str]]) -> Options:
         targets.validate(target)
     except ValueError as exc:
         raise OptionError(f"target: {exc}") from None
-    q = [_typed("q", part, cli._joint_value) for part in _split(values.get("q", ()))]
+    q = [_typed("q", part, values_of.joint_value) for part in _split(values.get("q", ()))]
     args = argparse.Namespace(
         command="check",
         select=[_split(values["select"])] if "select" in values else [],
@@ -168,8 +169,8 @@ def parse(values: Mapping[str, list[str]]) -> Options:
         fail_on=fail_on,
         target=target,
         xacro_arg=_xacro_pairs(values.get("xacro_args", ())),
-        expect_mass=_typed("expect_mass", _last(values, "expect_mass"), cli._expect_mass),
-        expect_com=_typed("expect_com", _last(values, "expect_com"), cli._expect_com),
+        expect_mass=_typed("expect_mass", _last(values, "expect_mass"), values_of.expect_mass),
+        expect_com=_typed("expect_com", _last(values, "expect_com"), values_of.expect_com),
         q=q,
         isolated=True,
         config=None,

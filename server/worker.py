@@ -261,9 +261,9 @@ def run(job: CheckJob | ReadyJob) -> dict[str, Any]:
 
 def check(job: CheckJob) -> dict[str, Any]:
     from urdflint import __version__, formatters, linter
-    from urdflint.cli import FAIL_LEVEL, _model_summary, _skipped_note
     from urdflint.context import Context
     from urdflint.finding import Finding
+    from urdflint.report import FAIL_LEVEL, model_summary, skipped_note
 
     from .uploads import Rejected, ZipLimits, extract
 
@@ -291,9 +291,9 @@ def check(job: CheckJob) -> dict[str, Any]:
         expects = settings.expect.mass is not None or settings.expect.com is not None
         gate = expects and bool({"P003", "P004"} & set(skipped))
         if skipped and (gate or "U004" in settings.enabled()):
-            findings.append(_skipped_note(job.name, skipped, expects))
+            findings.append(skipped_note(job.name, skipped, expects))
         findings = sorted((_scrub(f, root) for f in findings), key=Finding.sort_key)
-        models = {job.name: _model_summary(result)} if job.fmt == "json" else {}
+        models = {job.name: model_summary(result)} if job.fmt == "json" else {}
         run_info = formatters.RunInfo(__version__, (job.name,), models)
         if job.fmt != "json":
             return _rendered(job.fmt, findings, run_info)

@@ -10,17 +10,17 @@ import argparse
 import json
 import os
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from urdflint import __version__, config, formatters, registry, targets
-from urdflint.finding import Finding, Severity
+from urdflint import __version__, config, formatters, options, registry, report, targets
+from urdflint.finding import Finding
 
 EXIT_OK, EXIT_FINDINGS, EXIT_ERROR = 0, 1, 2
 SKIP_DIRS = {"node_modules", "__pycache__", "build", "install", "log"}
-FAIL_LEVEL = {"error": Severity.ERROR, "warning": Severity.WARNING, "info": Severity.INFO}
+FAIL_LEVEL = report.FAIL_LEVEL
 
 
 class UsageError(Exception):
@@ -94,14 +94,14 @@ def build_parser() -> argparse.ArgumentParser:
     check.add_argument(
         "--expect-mass",
         metavar="KG[±TOL]",
-        type=_expect_mass,
+        type=options.expect_mass,
         help="fail (P003) unless the total mass is KG within ±TOL kg or ±N%% "
         "(default tolerance: expect.mass-tolerance, 2%%)",
     )
     check.add_argument(
         "--expect-com",
         metavar="X,Y,Z[±TOL]",
-        type=_expect_com,
+        type=options.expect_com,
         help="fail (P004) unless the centre of mass, in the root link frame, is X,Y,Z "
         "within TOL metres (default: expect.com-tolerance, 0.01)",
     )
@@ -163,7 +163,7 @@ def _model_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--package-path",
         action="append",
-        type=_pair("="),
+        type=options.pair("="),
         default=[],
         metavar="NAME=DIR",
         help="where package NAME is (package:// and $(find NAME))",
@@ -171,7 +171,7 @@ def _model_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--q",
         action="append",
-        type=_joint_value,
+        type=options.joint_value,
         default=[],
         metavar="JOINT=VALUE",
         help="joint position for the mass and COM computation (repeatable)",
@@ -179,7 +179,7 @@ def _model_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--xacro-arg",
         action="append",
-        type=_pair(":="),
+        type=options.pair(":="),
         default=[],
         metavar="NAME:=VALUE",
         help="argument for xacro files (repeatable)",
@@ -209,58 +209,6 @@ def _gate_options(parser: argparse.ArgumentParser) -> None:
         metavar="REF",
         help="lint only the *.urdf/*.xacro files among PATHs changed since git REF (or untracked)",
     )
-
-
-def _pair(sep: str) -> Callable[[str], tuple[str, str]]:
-    def parse(text: str) -> tuple[str, str]:
-        name, found, value = text.partition(sep)
-        if not found or not name.strip():
-            raise argparse.ArgumentTypeError(f"expected NAME{sep}VALUE, got {text!r}")
-        return name.strip(), value.strip()
-
-    return parse
-
-
-def _float(text: str, what: str) -> float:
-    from urdflint.values import parse_number
-
-    value = parse_number(text.strip())
-    if value is None:
-        raise argparse.ArgumentTypeError(f"{what} {text!r} is not a number")
-    return value
-
-
-def _joint_value(text: str) -> tuple[str, float]:
-    name, value = _pair("=")(text)
-    return name, _float(value, f"joint {name!r} value")
-
-
-def _split_tolerance(text: str) -> tuple[str, str | None]:
-    for sep in ("±", "+-", "+/-"):
-        if sep in text:
-            value, _, tolerance = text.partition(sep)
-            return value, tolerance
-    return text, None
-
-
-def _expect_mass(text: str) -> tuple[float, float | None, float | None]:
-    """``12.3`` / ``12.3±0.2`` / ``12.3+-2%`` -> (mass, absolute tolerance, fraction)."""
-    value, tolerance = _split_tolerance(text)
-    mass = _float(value, "mass")
-    if tolerance is None:
-        return mass, None, None
-    if tolerance.strip().endswith("%"):
-        return mass, None, _float(tolerance.strip()[:-1], "tolerance") / 100
-    return mass, _float(tolerance, "tolerance"), None
-
-
-def _expect_com(text: str) -> tuple[tuple[float, float, float], float | None]:
-    value, tolerance = _split_tolerance(text)
-    parts = value.replace(",", " ").split()
-    if len(parts) != 3:
-        raise argparse.ArgumentTypeError(f"expected X,Y,Z[±TOL], got {text!r}")
-    com = tuple(_float(p, "coordinate") for p in parts)
-    return com, (_float(tolerance, "tolerance") if tolerance is not None else None)  # type: ignore[return-value]
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -431,12 +379,12 @@ def run_check(args: argparse.Namespace) -> int:
         crashed = crashed or result.crashed
         fail_on = settings.fail_on
         expects = expects or settings.expect.mass is not None or settings.expect.com is not None
-        models[shown] = _model_summary(result)
+        models[shown] = report.model_summary(result)
         if args.emit_expanded and result.document is not None:
             args.emit_expanded.write_bytes(result.document.source)
     gate = expects and bool({"P003", "P004"} & set(skipped))
     if skipped and checked and (gate or "U004" in finder.for_folder(Path.cwd()).enabled()):
-        findings.append(_skipped_note(checked[0], skipped, expects))
+        findings.append(report.skipped_note(checked[0], skipped, expects))
     findings.sort(key=Finding.sort_key)
     findings = _baseline_step(args, accepted, findings, ran)
 
@@ -569,16 +517,6 @@ def _context(args: argparse.Namespace) -> Any:
     return Context(package_paths={name: Path(folder) for name, folder in args.package_path})
 
 
-def _model_summary(result: Any) -> Any:
-    """The per-file ``model`` object of the JSON output (``None`` unless Pinocchio built it)."""
-    doc = result.document
-    if doc is None or "physics" not in doc.__dict__:
-        return None  # never import Pinocchio just for the summary
-    from urdflint.info import summary
-
-    return summary(doc)
-
-
 def run_info(args: argparse.Namespace) -> int:
     from urdflint import info, linter
 
@@ -596,33 +534,6 @@ def run_info(args: argparse.Namespace) -> int:
     text, ok = info.render(doc, args.format)
     sys.stdout.write(text)
     return EXIT_OK if ok else EXIT_FINDINGS
-
-
-def _skipped_note(path: str, skipped: dict[str, tuple[str, ...]], expects: bool) -> Finding:
-    """One note for the run; an error when mass/COM expectations could not be checked."""
-    from urdflint.linter import EXTRAS
-
-    rule = registry.RULES["U004"]
-    gate = expects and bool({"P003", "P004"} & set(skipped))
-    modules = sorted({m for missing in skipped.values() for m in missing})
-    extras = sorted({EXTRAS.get(m, m) for m in modules})
-    message = (
-        f"{len(skipped)} rule(s) skipped ({', '.join(sorted(skipped))}): "
-        f"{', '.join(modules)} not installed; install urdflint[{','.join(extras)}]"
-    )
-    if gate:
-        message += "; the mass and COM expectations were NOT checked"
-    return Finding(
-        path,
-        1,
-        1,
-        rule.code,
-        rule.name,
-        Severity.ERROR if gate else rule.severity,
-        message,
-        "/robot",
-        f"pip install 'urdflint[{','.join(extras)}]'",
-    )
 
 
 # -- serve ------------------------------------------------------------------------------
