@@ -60,8 +60,8 @@ def main() -> int:
 
     from lxml import etree
 
-    from urdflint import linter, registry
-    from urdflint.document import make_parser
+    from urdflint.engine import linter, registry
+    from urdflint.model.document import make_parser
 
     files = files_from(args.paths)
     if not files:
@@ -81,7 +81,7 @@ def main() -> int:
         nonlocal findings
         findings = sum(len(linter.lint_bytes(data, name).findings) for name, data in blobs)
 
-    from urdflint import config
+    from urdflint.engine import config
 
     no_physics = config.Settings(ignore=("P",))
 

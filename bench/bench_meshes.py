@@ -31,9 +31,9 @@ MESH_RULES = ("C004", "C005", "C006", "C007", "C008", "C009", "I007", "I008")
 
 def robots() -> list[tuple[Path, dict[str, Path]]]:
     """``(model.urdf, package paths)`` of every corpus robot with at least one mesh on disk."""
-    from urdflint import config, linter
-    from urdflint.context import Context
-    from urdflint.meshes import references, resolved
+    from urdflint.engine import config, linter
+    from urdflint.engine.context import Context
+    from urdflint.sources.meshes import references, resolved
 
     found = []
     for model in sorted(CORPUS.glob("*/model.urdf")):
@@ -62,9 +62,9 @@ def main() -> int:
 
     import trimesh  # warm imports: timed by neither side
 
-    from urdflint import config, linter, registry
-    from urdflint.context import Context
-    from urdflint.meshes import TRIMESH_TYPES, assets_resolver
+    from urdflint.engine import config, linter, registry
+    from urdflint.engine.context import Context
+    from urdflint.sources.meshes import TRIMESH_TYPES, assets_resolver
 
     registry.load_rules()
     settings = config.Settings(select=MESH_RULES)

@@ -342,8 +342,8 @@ def percentile(sorted_values: list[float], q: float) -> float:
 
 def in_process(load: Payload, repeat: int) -> tuple[float, float, list[tuple[str, int, str]]]:
     """(best, median) seconds of linting the same bytes here, and its (code, line, message)."""
-    from urdflint import config, linter
-    from urdflint.context import Context
+    from urdflint.engine import config, linter
+    from urdflint.engine.context import Context
 
     settings = config.from_mapping({})
     times: list[float] = []

@@ -11,16 +11,17 @@ from __future__ import annotations
 import contextlib
 import importlib
 
-from urdflint.server.worker import limit_threads
+from urdflint.server.threads import limit_threads
 
 limit_threads()
 
-from urdflint import cli, linter, registry  # noqa: E402,F401
+from urdflint.engine import linter, registry  # noqa: E402,F401
 
 registry.load_rules()
 
-for _name in ("xacro", "numpy", "trimesh", "yourdfpy", "collada", "pinocchio", "urdflint.physics",
-              "urdflint.meshes", "urdflint.xacro_input", "urdflint.info", "urdflint.svg",
-              "urdflint.formatters.json", "urdflint.formatters.sarif"):  # fmt: skip
+for _name in ("xacro", "numpy", "trimesh", "yourdfpy", "collada", "pinocchio",
+              "urdflint.engine.physics", "urdflint.sources.meshes", "urdflint.sources.xacro",
+              "urdflint.outputs.info", "urdflint.outputs.svg", "urdflint.outputs.formatters.json",
+              "urdflint.outputs.formatters.sarif"):  # fmt: skip
     with contextlib.suppress(Exception):
         importlib.import_module(_name)

@@ -53,7 +53,8 @@ from starlette.concurrency import run_in_threadpool
 from starlette.datastructures import UploadFile
 from starlette.exceptions import HTTPException
 
-from urdflint import __version__, docs, registry
+from urdflint import __version__
+from urdflint.engine import docs, registry
 
 from . import options as opts
 from .limits import Guard, Limits

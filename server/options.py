@@ -4,7 +4,7 @@ Every option may come as a query parameter or (multipart requests) as a form fie
 options (``select``, ``ignore``, ``target``, ``xacro_args``, ``q``) take repeated values,
 comma-separated lists, or both, and query and form values add up; for the other options a
 form field wins over the query. They mean what the CLI flags of the same name mean, and
-are applied by the CLI's own :class:`~urdflint.cli.SettingsFinder`, so the service and
+are applied by the CLI's own :class:`~urdflint.engine.options.SettingsFinder`, so the service and
 ``urdflint check --isolated`` agree exactly:
 
 ``select``, ``ignore``    rule codes, names or family letters
@@ -36,9 +36,10 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from urdflint import cli, config, targets
-from urdflint import options as values_of
-from urdflint.config import Settings
+from urdflint.engine import config
+from urdflint.engine import options as values_of
+from urdflint.engine.config import Settings
+from urdflint.model import targets
 
 LISTS = ("select", "ignore", "target", "xacro_args", "q")
 SCALARS = ("fail_on", "expect_mass", "expect_com", "config", "format", "svg", "filename")
@@ -147,7 +148,7 @@ def parse(values: Mapping[str, list[str]]) -> Options:
     fmt = (_last(values, "format") or "json").lower()
     if fmt not in FORMATS:
         raise OptionError(f"format: must be one of {', '.join(FORMATS)}, not {fmt!r}")
-    if fmt == "sarif" and importlib.util.find_spec("urdflint.formatters.sarif") is None:
+    if fmt == "sarif" and importlib.util.find_spec("urdflint.outputs.formatters.sarif") is None:
         raise OptionError("format: sarif is not available on this server")
     svg_text = (_last(values, "svg") or "").lower()
     if svg_text not in TRUE + FALSE:
@@ -177,8 +178,8 @@ def parse(values: Mapping[str, list[str]]) -> Options:
     )
     base = _base(_last(values, "config"))
     try:
-        finder = cli.SettingsFinder(args)
-    except cli.UsageError as exc:
+        finder = values_of.SettingsFinder(args)
+    except values_of.UsageError as exc:
         raise OptionError(str(exc).replace("--", "", 1)) from None
     settings = finder._apply(base)
     return Options(settings, fmt, svg_text in TRUE, _last(values, "filename"))

@@ -24,7 +24,7 @@ import zipfile
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
-from urdflint.resolve import package_name
+from urdflint.sources.resolve import package_name
 
 CHUNK = 1 << 16
 RATIO_FLOOR = 1 << 20  # members smaller than this are not ratio-checked

@@ -34,16 +34,17 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from urdflint.server.threads import limit_threads
+
 if TYPE_CHECKING:
     from multiprocessing.connection import Connection
 
-    from urdflint.config import Settings
+    from urdflint.engine.config import Settings
 
     from .uploads import ZipLimits
 
 log = logging.getLogger("urdflint.server.worker")
 
-THREAD_VARS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS")
 DENIED_ALWAYS = frozenset(
     {
         "socket.__new__",
@@ -71,12 +72,6 @@ DENIED_ALWAYS = frozenset(
 PATH_EVENTS = frozenset({"open", "os.listdir", "os.scandir", "glob.glob", "shutil.copyfile"})
 WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
 DEVICES = ("/dev/null", "/dev/urandom", "/dev/random")
-
-
-def limit_threads() -> None:
-    """One BLAS/OpenMP thread per worker: the pool gives the parallelism."""
-    for name in THREAD_VARS:
-        os.environ.setdefault(name, "1")
 
 
 # -- the fence ----------------------------------------------------------------------------
@@ -260,10 +255,12 @@ def run(job: CheckJob | ReadyJob) -> dict[str, Any]:
 
 
 def check(job: CheckJob) -> dict[str, Any]:
-    from urdflint import __version__, formatters, linter
-    from urdflint.context import Context
-    from urdflint.finding import Finding
-    from urdflint.report import FAIL_LEVEL, model_summary, skipped_note
+    from urdflint import __version__
+    from urdflint.engine import linter
+    from urdflint.engine.context import Context
+    from urdflint.model.finding import Finding
+    from urdflint.outputs import formatters
+    from urdflint.outputs.report import FAIL_LEVEL, model_summary, skipped_note
 
     from .uploads import Rejected, ZipLimits, extract
 
@@ -297,7 +294,7 @@ def check(job: CheckJob) -> dict[str, Any]:
         run_info = formatters.RunInfo(__version__, (job.name,), models)
         if job.fmt != "json":
             return _rendered(job.fmt, findings, run_info)
-        from urdflint.formatters.json import document
+        from urdflint.outputs.formatters.json import document
 
         data = document(findings, run_info)
         threshold = FAIL_LEVEL.get(settings.fail_on)
@@ -311,11 +308,11 @@ def check(job: CheckJob) -> dict[str, Any]:
 
 
 def _rendered(fmt: str, findings: list[Any], run_info: Any) -> dict[str, Any]:
-    from urdflint import formatters
+    from urdflint.outputs import formatters
 
     if fmt == "sarif":
         try:
-            from urdflint.formatters import sarif  # type: ignore[attr-defined,unused-ignore]
+            from urdflint.outputs.formatters import sarif  # type: ignore[attr-defined,unused-ignore]
         except ImportError:
             return reply(422, {"detail": "the sarif format is not available on this server"})
         return reply(200, sarif.render(findings, run_info), "application/sarif+json")
@@ -324,7 +321,7 @@ def _rendered(fmt: str, findings: list[Any], run_info: Any) -> dict[str, Any]:
 
 def _svg(doc: Any, findings: list[Any]) -> str | None:
     try:
-        from urdflint.svg import render_tree  # type: ignore[attr-defined,unused-ignore]
+        from urdflint.outputs.svg import render_tree  # type: ignore[attr-defined,unused-ignore]
     except ImportError:
         return None
     try:
@@ -404,9 +401,9 @@ TINY = b"""<robot name="ready">
 def ready(job: ReadyJob) -> dict[str, Any]:
     from importlib import metadata
 
-    from urdflint import linter
-    from urdflint.context import Context
-    from urdflint.document import Document
+    from urdflint.engine.context import Context
+    from urdflint.model import optional
+    from urdflint.model.document import Document
 
     root = Path(job.folder) / "ready"
     root.mkdir(mode=0o700)
@@ -417,7 +414,7 @@ def ready(job: ReadyJob) -> dict[str, Any]:
         context = Context(root=root, environ={})
         doc = Document("ready.urdf", TINY, context=context, base_dir=root)
         for module, dist in (("pinocchio", "pin"), ("trimesh", "trimesh"), ("xacro", "xacro")):
-            entry: dict[str, Any] = {"available": linter.available(module)}
+            entry: dict[str, Any] = {"available": optional.available(module)}
             with contextlib.suppress(metadata.PackageNotFoundError):
                 entry["version"] = metadata.version(dist)
             caps[module] = entry
@@ -433,7 +430,7 @@ def ready(job: ReadyJob) -> dict[str, Any]:
             if not caps["trimesh"]["works"]:
                 caps["trimesh"]["error"] = info.error
                 ok = False
-        caps["collada"] = {"available": linter.available("collada")}
+        caps["collada"] = {"available": optional.available("collada")}
     return reply(200 if ok else 503, {"ready": ok, "capabilities": caps})
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from urdflint import config, linter
-from urdflint.finding import Finding
+from urdflint.engine import config, linter
+from urdflint.model.finding import Finding
 
 EXPECT_RE = re.compile(r"<!--\s*expect:\s*(.*?)\s*-->")
 

@@ -11,8 +11,8 @@ import pytest
 
 from tests.conftest import CORPUS, needs_corpus
 from tests.test_cli import NO_LIMIT
-from urdflint.baseline import relative
 from urdflint.cli import main
+from urdflint.engine.baseline import relative
 
 ROBOTS = ("rrbot", "r2d2", "pr2")  # small, medium, large (pr2 has many findings)
 

@@ -11,6 +11,7 @@ import pytest
 
 from tests.conftest import FIXTURES
 from urdflint.cli import main
+from urdflint.model import optional
 
 GOOD = FIXTURES / "models" / "template_good.urdf"
 BROKEN_XML = FIXTURES / "rules" / "X001" / "bad.urdf"
@@ -99,8 +100,8 @@ def test_github_format_and_auto_detection(capsys, no_limit: Path, monkeypatch) -
 
 
 def test_github_escapes_property_and_message_data() -> None:
-    from urdflint.finding import Finding, Severity
-    from urdflint.formatters import RunInfo, github
+    from urdflint.model.finding import Finding, Severity
+    from urdflint.outputs.formatters import RunInfo, github
 
     finding = Finding(
         "a,b:c.urdf", 2, 1, "X001", "invalid-xml", Severity.ERROR, "50% bad\nline", "/robot"
@@ -203,8 +204,8 @@ def test_rules_and_explain(capsys) -> None:
 
 
 def test_internal_error_becomes_u001_and_exit_2(capsys, no_limit: Path, monkeypatch) -> None:
-    from urdflint import registry
-    from urdflint.finding import Severity
+    from urdflint.engine import registry
+    from urdflint.model.finding import Severity
 
     def boom(doc):
         raise RuntimeError("kaboom")
@@ -226,8 +227,8 @@ def test_internal_error_becomes_u001_and_exit_2(capsys, no_limit: Path, monkeypa
 def test_missing_extra_is_skipped_with_one_note(
     capsys, no_limit: Path, tmp_path: Path, monkeypatch
 ) -> None:
-    from urdflint import registry
-    from urdflint.finding import Severity
+    from urdflint.engine import registry
+    from urdflint.model.finding import Severity
 
     def needs_pin(doc):
         yield from ()
@@ -255,9 +256,7 @@ def test_python_dash_m_works() -> None:
 
 
 def test_expectations_without_pinocchio_fail_the_run(capsys, no_limit: Path, monkeypatch) -> None:
-    from urdflint import linter
-
-    monkeypatch.setattr(linter, "available", lambda module: module != "pinocchio")
+    monkeypatch.setattr(optional, "available", lambda module: module != "pinocchio")
     code, out, _ = run(
         capsys, "check", "--format", "json", "--select", "X,P", "--expect-mass", "1", str(GOOD)
     )

@@ -115,8 +115,8 @@ def test_unwritable_output_is_a_usage_error(capsys, tmp_path: Path) -> None:
 
 
 def test_a_crashed_rule_is_a_junit_error(capsys, tmp_path: Path, monkeypatch) -> None:
-    from urdflint import registry
-    from urdflint.finding import Severity
+    from urdflint.engine import registry
+    from urdflint.model.finding import Severity
 
     def boom(doc):
         raise RuntimeError("kaboom")

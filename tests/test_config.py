@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from tests.test_cli import NO_LIMIT, run
-from urdflint import config
+from urdflint.engine import config
 
 
 @pytest.fixture

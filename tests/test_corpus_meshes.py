@@ -15,8 +15,8 @@ import pytest
 from lxml import etree
 
 from tests.conftest import CORPUS, needs_corpus
-from urdflint import config, linter
-from urdflint.context import Context
+from urdflint.engine import config, linter
+from urdflint.engine.context import Context
 
 pytestmark = [needs_corpus, pytest.mark.filterwarnings("error")]
 pytest.importorskip("trimesh")

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import corpus_models, needs_corpus
-from urdflint.document import Document
-from urdflint.physics import urdf_masses
+from urdflint.engine.physics import urdf_masses
+from urdflint.model.document import Document
 
 pytestmark = needs_corpus
 pin = pytest.importorskip("pinocchio")

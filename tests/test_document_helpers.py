@@ -5,7 +5,16 @@ from __future__ import annotations
 import pytest
 from lxml import etree
 
-from urdflint.schema import Kind, describe, homes, is_xacro, malformed, owner, walk, wrong_arity
+from urdflint.model.schema import (
+    Kind,
+    describe,
+    homes,
+    is_xacro,
+    malformed,
+    owner,
+    walk,
+    wrong_arity,
+)
 
 
 @pytest.mark.parametrize("value", ["1", "-0.5", "+2", ".5", "1.", "1e-3", "2E+2", " 1"])

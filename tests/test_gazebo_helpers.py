@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from lxml import etree
 
-from urdflint import gazebo_spec as gs
-from urdflint.document import Document
+from urdflint.model import gazebo_spec as gs
+from urdflint.model.document import Document
 
 ROBOT = b"""<robot name="r">
   <link name="world"/>

@@ -70,7 +70,8 @@ def test_deep_nesting_is_refused_by_libxml2_limits() -> None:
 
 
 def test_huge_file_is_refused_without_parsing(tmp_path: Path) -> None:
-    from urdflint import document, linter
+    from urdflint.engine import linter
+    from urdflint.model import document
 
     data = b"<robot name='r'>" + b" " * (document.MAX_BYTES + 1) + b"</robot>"
     found = linter.lint_bytes(data, "huge.urdf").findings

@@ -8,9 +8,9 @@ import random
 import pytest
 from lxml import etree
 
-from urdflint.document import Document
-from urdflint.geometry import Shape, read_shape
-from urdflint.inertia import (
+from urdflint.model.document import Document
+from urdflint.model.geometry import Shape, read_shape
+from urdflint.model.inertia import (
     aabb,
     bodies,
     eigenvalues,

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import FIXTURES
-from urdflint import info
 from urdflint.cli import main
-from urdflint.document import Document
+from urdflint.model.document import Document
+from urdflint.outputs import info
 
 ARM = FIXTURES / "models" / "example_arm.urdf"
 BLOCKED = FIXTURES / "rules" / "P001" / "bad_blocked.urdf"

@@ -1,4 +1,4 @@
-"""urdflint.joints: reading a joint's axis and limit the way urdfdom does."""
+"""urdflint.model.joints: reading a joint's axis and limit the way urdfdom does."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import math
 import pytest
 
 from tests.helpers import lint_text
-from urdflint import joints as J
-from urdflint.document import Document, Joint
+from urdflint.model import joints as J
+from urdflint.model.document import Document, Joint
 
 
 def joint(body: str, jtype: str = "revolute") -> Joint:

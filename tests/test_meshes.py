@@ -11,10 +11,11 @@ import pytest
 
 from tests.conftest import FIXTURES, ROOT
 from tests.helpers import lint_file
-from urdflint import config, linter, registry
-from urdflint.context import Context
-from urdflint.finding import Severity
-from urdflint.meshes import MeshCache, scale_hint, suffix
+from urdflint.engine import config, linter, registry
+from urdflint.engine.context import Context
+from urdflint.model import optional
+from urdflint.model.finding import Severity
+from urdflint.sources.meshes import MeshCache, scale_hint, suffix
 
 trimesh = pytest.importorskip("trimesh")
 
@@ -233,7 +234,7 @@ def test_a_urdf_without_meshes_never_imports_trimesh() -> None:
     modules = _imports(
         f"""
         from pathlib import Path
-        from urdflint import config, linter
+        from urdflint.engine import config, linter
         linter.lint_path(Path({str(FIXTURES / "models" / "template_good.urdf")!r}), "x",
                          config.Settings(select=("C", "I")))
         """
@@ -245,7 +246,7 @@ def test_unresolved_meshes_and_c004_never_import_trimesh() -> None:
     modules = _imports(
         f"""
         from pathlib import Path
-        from urdflint import config, linter
+        from urdflint.engine import config, linter
         linter.lint_path(Path({str(FIXTURES / "rules" / "C002" / "good.urdf")!r}), "x",
                          config.Settings())
         linter.lint_path(Path({str(FIXTURES / "rules" / "C004" / "good.urdf")!r}), "x",
@@ -256,7 +257,7 @@ def test_unresolved_meshes_and_c004_never_import_trimesh() -> None:
 
 
 def test_light_install_keeps_the_primitive_checks(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(linter, "available", lambda module: module != "trimesh")
+    monkeypatch.setattr(optional, "available", lambda module: module != "trimesh")
     primitive = FIXTURES / "rules" / "I007" / "bad.urdf"
     assert [f.code for f in lint_file(primitive, select=("I007",))] == ["I007"]
     for code in ("I007", "I008"):

@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import FIXTURES
-from urdflint import config, linter, physics
 from urdflint.cli import main
-from urdflint.document import Document
+from urdflint.engine import config, linter, physics
+from urdflint.model.document import Document
 
 pin = pytest.importorskip("pinocchio")
 np = pytest.importorskip("numpy")

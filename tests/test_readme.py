@@ -6,8 +6,8 @@ import re
 import tomllib
 
 from tests.conftest import ROOT
-from urdflint import config
 from urdflint.cli import build_parser
+from urdflint.engine import config
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 

@@ -9,7 +9,7 @@ import re
 import urdflint.rules
 
 from tests.conftest import ROOT
-from urdflint import docs, registry
+from urdflint.engine import docs, registry
 
 RULES = registry.load_rules()
 

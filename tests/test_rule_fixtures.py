@@ -11,8 +11,8 @@ import pytest
 
 from tests.conftest import FIXTURES
 from tests.helpers import expectations, lint_file
-from urdflint import registry
-from urdflint.finding import Severity
+from urdflint.engine import registry
+from urdflint.model.finding import Severity
 
 # Rules that cannot have a file fixture: produced by the engine itself.
 EXEMPT = {"U001", "U004", "U005"}

@@ -6,8 +6,8 @@ from lxml import etree
 from urdflint.rules.geometry.c002_collision_same_as_visual_mesh import normalise
 
 from tests.helpers import lint_text
-from urdflint.document import Document
-from urdflint.structure import closest, did_you_mean, transmission_joint_refs, welded
+from urdflint.model.document import Document
+from urdflint.model.structure import closest, did_you_mean, transmission_joint_refs, welded
 
 
 def doc(body: str) -> Document:

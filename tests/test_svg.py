@@ -9,11 +9,11 @@ import pytest
 from lxml import etree
 
 from tests.conftest import CORPUS, FIXTURES, corpus_models, needs_corpus
-from urdflint import linter
-from urdflint.config import Settings
-from urdflint.document import Document
-from urdflint.finding import Finding, Severity
-from urdflint.svg import MAX_NODES, esc, render_tree
+from urdflint.engine import linter
+from urdflint.engine.config import Settings
+from urdflint.model.document import Document
+from urdflint.model.finding import Finding, Severity
+from urdflint.outputs.svg import MAX_NODES, esc, render_tree
 
 SVG = "{http://www.w3.org/2000/svg}"
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from tests.conftest import FIXTURES
 from tests.helpers import lint_file
-from urdflint import config
-from urdflint.finding import Severity
+from urdflint.engine import config
+from urdflint.model.finding import Severity
 
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"
 COLOUR = FIXTURES / "rules" / "G002" / "bad.urdf"

@@ -14,9 +14,10 @@ from lxml import etree
 
 from tests.conftest import FIXTURES, corpus_models, needs_corpus
 from tests.helpers import expectations
-from urdflint import config, linter, xacro_input
-from urdflint.context import Context
-from urdflint.finding import Finding, Severity
+from urdflint.engine import config, linter
+from urdflint.engine.context import Context
+from urdflint.model.finding import Finding, Severity
+from urdflint.sources import xacro as xacro_input
 
 pytest.importorskip("xacro")
 

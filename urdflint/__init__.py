@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from urdflint.finding import Finding, Severity
+from urdflint.engine import views as _views  # noqa: F401  (registers the engine's document views)
+from urdflint.model.finding import Finding, Severity
 
 __version__ = "0.1.0"  # the single source of the version (pyproject reads it)
 

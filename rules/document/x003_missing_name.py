@@ -33,10 +33,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.schema import owner
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
+from urdflint.model.schema import owner
 
 
 @rule("X003", "missing-name", Severity.ERROR, fix="Add a unique, non-empty name attribute.")

@@ -26,11 +26,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.schema import attributes, owner, wrong_arity
-from urdflint.values import has_xacro
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.schema import attributes, owner, wrong_arity
+from urdflint.model.values import has_xacro
 
 
 @rule(

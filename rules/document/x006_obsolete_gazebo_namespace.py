@@ -26,9 +26,9 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document, local_tag
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, local_tag
+from urdflint.model.finding import Severity
 
 PLAYERSTAGE = "playerstage.sourceforge.net/gazebo/xmlschema"
 

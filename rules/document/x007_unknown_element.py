@@ -38,10 +38,10 @@ from __future__ import annotations
 import difflib
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.schema import SPECS, describe, homes, walk
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.schema import SPECS, describe, homes, walk
 
 # Well-known mistakes that deserve a specific hint: (context, tag) -> hint.
 HINTS = {

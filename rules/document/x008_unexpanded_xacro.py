@@ -43,11 +43,11 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document, local_tag
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.schema import describe, is_xacro
-from urdflint.values import has_xacro
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, local_tag
+from urdflint.model.finding import Severity
+from urdflint.model.schema import describe, is_xacro
+from urdflint.model.values import has_xacro
 
 INERT = frozenset({"property", "arg", "macro"})
 NAME_ATTRS = frozenset({"name", "link", "joint", "reference"})

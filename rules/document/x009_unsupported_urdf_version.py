@@ -53,9 +53,9 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
 
 SINCE = {(1, 0): "", (1, 1): "5.1", (1, 2): "6.0"}  # the urdfdom release that reads it
 # strtol: optional leading whitespace and sign, then digits, nothing after

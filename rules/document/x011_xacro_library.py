@@ -24,9 +24,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
 
 
 @rule(

@@ -21,11 +21,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.gazebo_spec import scopes_of, suggest
-from urdflint.registry import Hit, rule
-from urdflint.values import has_xacro
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.gazebo_spec import scopes_of, suggest
+from urdflint.model.values import has_xacro
 
 
 @rule(

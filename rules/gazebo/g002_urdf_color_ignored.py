@@ -33,12 +33,12 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint import targets
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.gazebo_spec import blocks_for, keys_of
-from urdflint.registry import Hit, rule
-from urdflint.values import vector
+from urdflint.engine.registry import Hit, rule
+from urdflint.model import targets
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.gazebo_spec import blocks_for, keys_of
+from urdflint.model.values import vector
 
 # Achromatic colours in this brightness band look like Gazebo's default grey anyway.
 GREY_SPREAD, GREY_LOW, GREY_HIGH = 0.05, 0.4, 0.8

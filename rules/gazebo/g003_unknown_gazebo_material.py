@@ -30,11 +30,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.gazebo_spec import describe, keys_of, materials, scopes_of, suggest, value_of
-from urdflint.registry import Hit, rule
-from urdflint.values import has_xacro
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
+from urdflint.model.gazebo_spec import describe, keys_of, materials, scopes_of, suggest, value_of
+from urdflint.model.values import has_xacro
 
 PREFIX = "Gazebo/"
 

@@ -27,11 +27,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint import targets
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.gazebo_spec import LEGACY, describe, keys_of
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model import targets
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.gazebo_spec import LEGACY, describe, keys_of
 
 
 @rule(

@@ -31,9 +31,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.gazebo_spec import (
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.gazebo_spec import (
     LEGACY,
     SCOPE_SDF,
     candidates,
@@ -43,7 +44,6 @@ from urdflint.gazebo_spec import (
     near_miss,
     scopes_of,
 )
-from urdflint.registry import Hit, rule
 
 
 @rule(

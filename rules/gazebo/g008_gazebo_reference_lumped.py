@@ -35,10 +35,11 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint import targets
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.gazebo_spec import (
+from urdflint.engine.registry import Hit, rule
+from urdflint.model import targets
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.gazebo_spec import (
     LINK_LEVEL,
     blocks_for,
     canonical,
@@ -46,7 +47,6 @@ from urdflint.gazebo_spec import (
     lumped_into,
     preserved_joints,
 )
-from urdflint.registry import Hit, rule
 
 
 @rule(

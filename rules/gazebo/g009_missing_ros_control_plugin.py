@@ -37,10 +37,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint import targets
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model import targets
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
 
 CONTROL_PLUGIN = re.compile(
     r"gazebo_ros2?_control|gz_ros2_control|ign_ros2_control|ros_controller_manager", re.I

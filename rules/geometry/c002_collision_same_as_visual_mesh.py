@@ -23,11 +23,11 @@ from __future__ import annotations
 import posixpath
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.geometry import shapes
-from urdflint.registry import Hit, rule
-from urdflint.structure import q
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.geometry import shapes
+from urdflint.model.structure import q
 
 
 def normalise(uri: str) -> str:

@@ -45,12 +45,12 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.geometry import shape_elements
-from urdflint.registry import Hit, rule
-from urdflint.structure import closest, q
-from urdflint.values import fmt, number, vector
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
+from urdflint.model.geometry import shape_elements
+from urdflint.model.structure import closest, q
+from urdflint.model.values import fmt, number, vector
 
 ALIASES = {"cube": "box", "ball": "sphere"}
 DIMENSIONS = {

@@ -45,12 +45,12 @@ from __future__ import annotations
 from collections.abc import Iterator
 from pathlib import Path
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.meshes import MeshRef, references, resolved
-from urdflint.registry import Hit, rule
-from urdflint.resolve import SCHEME_RE
-from urdflint.structure import q
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.structure import q
+from urdflint.sources.meshes import MeshRef, references, resolved
+from urdflint.sources.resolve import SCHEME_RE
 
 FIX_PACKAGE = "Pass --package-path NAME=DIR or set package-paths in the configuration."
 FIX_FILE = "Correct the filename (case matters) or add the mesh file."

@@ -26,11 +26,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.meshes import TRIMESH_TYPES, load, references
-from urdflint.registry import Hit, rule
-from urdflint.structure import q
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.structure import q
+from urdflint.sources.meshes import TRIMESH_TYPES, load, references
 
 
 @rule(

@@ -24,12 +24,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.meshes import MAX_EXTENT, load, references, scale_hint, suspicious_size
-from urdflint.registry import Hit, rule
-from urdflint.structure import q
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.structure import q
+from urdflint.model.values import fmt
+from urdflint.sources.meshes import MAX_EXTENT, load, references, scale_hint, suspicious_size
 
 
 @rule(

@@ -29,12 +29,12 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.gazebo_spec import blocks_for, keys_of
-from urdflint.meshes import suffix
-from urdflint.registry import Hit, rule
-from urdflint.structure import q
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.gazebo_spec import blocks_for, keys_of
+from urdflint.model.structure import q
+from urdflint.sources.meshes import suffix
 
 STL = frozenset({"stl", "stla", "stlb"})
 

@@ -34,12 +34,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.meshes import KNOWN_FORMATS, TARGET_FORMATS, format_name, references, suffix
-from urdflint.registry import Hit, rule
-from urdflint.structure import q
-from urdflint.targets import LABELS
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.structure import q
+from urdflint.model.targets import LABELS
+from urdflint.sources.meshes import KNOWN_FORMATS, TARGET_FORMATS, format_name, references, suffix
 
 READS = {
     "gazebo-classic": "STL, Collada and OBJ",

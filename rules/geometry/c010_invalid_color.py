@@ -42,11 +42,11 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.schema import owner
-from urdflint.values import fmt, parse_numbers
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
+from urdflint.model.schema import owner
+from urdflint.model.values import fmt, parse_numbers
 
 
 def _materials(doc: Document) -> Iterator[etree._Element]:

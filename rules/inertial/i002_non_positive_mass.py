@@ -26,11 +26,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.inertia import bodies, massless_verdict
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.inertia import bodies, massless_verdict
+from urdflint.model.values import fmt
 
 
 @rule("I002", "non-positive-mass", Severity.ERROR, fix="Write the link's real mass in kilograms.")

@@ -29,11 +29,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.inertia import bodies, principal_moments, tolerance
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.inertia import bodies, principal_moments, tolerance
+from urdflint.model.values import fmt
 
 
 @rule(

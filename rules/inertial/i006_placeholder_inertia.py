@@ -31,11 +31,11 @@ import math
 import statistics
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.inertia import PLACEHOLDER, Bodies, bodies, primitive_box, times
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.inertia import PLACEHOLDER, Bodies, bodies, primitive_box, times
+from urdflint.model.values import fmt
 
 DEFAULT_SIZE = 0.5  # metres, when the link has no primitive geometry
 MASS_RATIO = 10.0

@@ -49,10 +49,11 @@ import math
 from collections.abc import Iterator
 from typing import Any
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.geometry import shapes
-from urdflint.inertia import (
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.geometry import shapes
+from urdflint.model.inertia import (
     PLACEHOLDER,
     bodies,
     judge,
@@ -61,8 +62,7 @@ from urdflint.inertia import (
     principal_moments,
     times,
 )
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.model.values import fmt
 
 MAX_DENSITY = 1e5  # kg/m^3, five times osmium's
 
@@ -121,7 +121,7 @@ def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
 
 def _mesh_solid(doc: Document, shape: Any, mass: float) -> tuple[float, float, str, str] | None:
     """``(trace at mass, volume, description, note)`` of a collision mesh read as a solid."""
-    from urdflint.meshes import MeshRef, load, suspicious_size
+    from urdflint.sources.meshes import MeshRef, load, suspicious_size
 
     info = load(doc, MeshRef(None, "collision", shape))
     if info is None or info.error is not None or suspicious_size(info):

@@ -40,11 +40,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.inertia import Bodies, Vec, apply, bodies, body_box, geometry_box, has_mesh
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.inertia import Bodies, Vec, apply, bodies, body_box, geometry_box, has_mesh
+from urdflint.model.values import fmt
 
 MARGIN = 0.1
 MESH_MARGIN = 0.25  # a mesh's box often leaves out parts that carry mass (motors, cables)

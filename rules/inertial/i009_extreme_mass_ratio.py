@@ -31,11 +31,11 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.inertia import GAZEBO_MASSLESS, MOVABLE, bodies, times
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.inertia import GAZEBO_MASSLESS, MOVABLE, bodies, times
+from urdflint.model.values import fmt
 
 
 @rule(

@@ -29,9 +29,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.inertia import (
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.inertia import (
     GAZEBO_MASSLESS,
     TINY_MOMENT,
     bodies,
@@ -39,8 +40,7 @@ from urdflint.inertia import (
     massless_verdict,
     principal_moments,
 )
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.model.values import fmt
 
 
 @rule("I010", "tiny-inertial", Severity.WARNING, fix="Give the link its real mass and inertia.")

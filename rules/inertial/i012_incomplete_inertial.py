@@ -43,10 +43,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.structure import q
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.structure import q
 
 ORDER = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")  # urdfdom's order
 DROPPED = "urdfdom loads the link without its visuals and collisions"

@@ -27,10 +27,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint import joints as J
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model import joints as J
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
 
 
 @rule(

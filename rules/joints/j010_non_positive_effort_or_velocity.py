@@ -38,11 +38,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint import joints as J
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model import joints as J
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.values import fmt
 
 
 @rule(

@@ -37,12 +37,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint import joints as J
-from urdflint import targets
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.targets import gazebo_label
+from urdflint.engine.registry import Hit, rule
+from urdflint.model import joints as J
+from urdflint.model import targets
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.targets import gazebo_label
 
 GAZEBO_TARGETS = frozenset({"gazebo-classic", "gz-sim"})
 

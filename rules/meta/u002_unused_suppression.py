@@ -16,8 +16,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.finding import Severity
 
 
 @rule("U002", "unused-suppression", Severity.INFO, fix="Remove the stale suppression comment.")

@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.finding import Severity
 
 
 @rule("U004", "rule-skipped", Severity.INFO, requires_robot=False)

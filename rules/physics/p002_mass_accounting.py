@@ -33,10 +33,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.values import fmt
 
 SHOWN = 4
 
@@ -50,7 +50,7 @@ SHOWN = 4
     "pin.JointModelFreeFlyer(); urdflint's totals include it.",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    from urdflint.physics import close, urdf_masses
+    from urdflint.engine.physics import close, urdf_masses
 
     physics = doc.physics
     if not physics.built:

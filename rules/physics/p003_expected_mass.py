@@ -24,10 +24,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.values import fmt
 
 
 @rule(
@@ -39,7 +39,7 @@ from urdflint.values import fmt
     "expect.mass if the robot really changed.",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    from urdflint.physics import unverifiable
+    from urdflint.engine.physics import unverifiable
 
     expect = doc.settings.expect
     if expect.mass is None:

@@ -33,10 +33,10 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.values import fmt
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.values import fmt
 
 
 def point(v: tuple[float, ...]) -> str:
@@ -52,7 +52,7 @@ def point(v: tuple[float, ...]) -> str:
     "expect.com if the robot really changed.",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    from urdflint.physics import unverifiable
+    from urdflint.engine.physics import unverifiable
 
     expect = doc.settings.expect
     physics = doc.physics if (expect.com is not None or expect.q) else None

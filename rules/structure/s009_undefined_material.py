@@ -30,10 +30,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.structure import did_you_mean, q
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document
+from urdflint.model.finding import Severity
+from urdflint.model.structure import did_you_mean, q
 
 
 def _has_definition(material: etree._Element) -> bool:

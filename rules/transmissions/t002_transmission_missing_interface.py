@@ -30,10 +30,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from urdflint.document import Document, children
-from urdflint.finding import Severity
-from urdflint.registry import Hit, rule
-from urdflint.structure import q
+from urdflint.engine.registry import Hit, rule
+from urdflint.model.document import Document, children
+from urdflint.model.finding import Severity
+from urdflint.model.structure import q
 
 HW = "hardwareInterface"
 

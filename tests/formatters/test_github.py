@@ -7,8 +7,8 @@ import subprocess
 import sys
 
 from tests.conftest import FIXTURES, ROOT, corpus_models, needs_corpus
-from urdflint.finding import Finding, Severity
-from urdflint.formatters import RunInfo, github
+from urdflint.model.finding import Finding, Severity
+from urdflint.outputs.formatters import RunInfo, github
 
 BROKEN = (FIXTURES / "models" / "broken_arm.urdf").relative_to(ROOT)
 

@@ -7,9 +7,9 @@ import sys
 from xml.etree import ElementTree as ET
 
 from tests.conftest import FIXTURES, ROOT, corpus_models, needs_corpus
-from urdflint import registry
-from urdflint.finding import Finding, Severity
-from urdflint.formatters import NAMES, RunInfo, get, junit
+from urdflint.engine import registry
+from urdflint.model.finding import Finding, Severity
+from urdflint.outputs.formatters import NAMES, RunInfo, get, junit
 
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"
 

@@ -11,9 +11,10 @@ from typing import Any
 import pytest
 
 from tests.conftest import FIXTURES, ROOT, corpus_models, needs_corpus
-from urdflint import __version__, registry
-from urdflint.finding import Finding, Severity
-from urdflint.formatters import NAMES, RunInfo, get, sarif
+from urdflint import __version__
+from urdflint.engine import registry
+from urdflint.model.finding import Finding, Severity
+from urdflint.outputs.formatters import NAMES, RunInfo, get, sarif
 
 SCHEMA = ROOT / "tests" / "data" / "sarif-schema-2.1.0.json"  # the OASIS schema, shipped
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"

@@ -185,7 +185,7 @@ def test_config_json_is_applied(client: TestClient) -> None:
 
 
 def test_svg_is_added_when_asked(client: TestClient) -> None:
-    pytest.importorskip("urdflint.svg")
+    pytest.importorskip("urdflint.outputs.svg")
     r = xml(client, robot(), svg="true", filename="arm.urdf")
     assert r.status_code == 200
     assert r.json()["svg"]["arm.urdf"].lstrip().startswith("<svg")
@@ -198,7 +198,7 @@ def test_other_formats(client: TestClient) -> None:
     assert "urdflint:" in r.text
     r = xml(client, robot(), format="sarif")
     try:
-        import urdflint.formatters.sarif  # noqa: F401
+        import urdflint.outputs.formatters.sarif  # noqa: F401
     except ImportError:
         assert r.status_code == 422
     else:

@@ -1,0 +1,51 @@
+"""``urdflint rules`` and ``urdflint explain``: the rule catalogue and each rule's page."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Any
+
+from urdflint.cli.common import EXIT_OK, UsageError
+from urdflint.engine import registry
+
+
+def add_parsers(sub: Any) -> None:
+    rules = sub.add_parser("rules", help="list the rules")
+    rules.add_argument("--format", choices=("text", "json"), default="text")
+
+    explain = sub.add_parser("explain", help="show a rule's page: what, why, how to fix, examples")
+    explain.add_argument("rule", metavar="CODE|NAME")
+
+
+def run_rules(args: argparse.Namespace) -> int:
+    rules = registry.load_rules()
+    if args.format == "json":
+        data = [
+            {
+                "code": r.code,
+                "name": r.name,
+                "severity": str(r.severity),
+                "family": registry.FAMILIES[r.family],
+                "summary": r.summary,
+                "needs": list(r.needs),
+                "options": dict(r.options),
+            }
+            for r in sorted(rules.values(), key=lambda r: r.code)
+        ]
+        print(json.dumps({"version": 1, "rules": data}, indent=2))
+        return EXIT_OK
+    for r in sorted(rules.values(), key=lambda r: r.code):
+        print(f"{r.code}  {r.name:<36} {r.severity!s:<8} {r.summary}")
+    return EXIT_OK
+
+
+def run_explain(args: argparse.Namespace) -> int:
+    from urdflint.engine import docs
+
+    found = registry.lookup(args.rule)
+    if found is None:
+        raise UsageError(f"unknown rule {args.rule!r} (see 'urdflint rules')")
+    sys.stdout.write(docs.page(found))
+    return EXIT_OK

@@ -1,0 +1,53 @@
+"""``urdflint serve``: the HTTP validation service under uvicorn."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from urdflint.cli.common import EXIT_OK, UsageError
+
+
+def add_parser(sub: Any) -> None:
+    serve = sub.add_parser(
+        "serve",
+        help="run the HTTP validation service (needs urdflint[server])",
+        description="Run the HTTP service (urdflint.server.app:app) with uvicorn. Limits come "
+        "from URDFLINT_* environment variables: MAX_URDF_BYTES, MAX_ZIP_BYTES, TIMEOUT, "
+        "JOBS, QUEUE (see the README).",
+    )
+    serve.add_argument("--host", default="127.0.0.1", help="address to listen on")
+    serve.add_argument("--port", type=int, default=8000, help="port to listen on")
+    serve.add_argument(
+        "--workers",
+        type=int,
+        default=1,
+        help="server processes (each with its own URDFLINT_JOBS lint workers)",
+    )
+    serve.add_argument("--log-level", default="info", choices=("debug", "info", "warning", "error"))
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run uvicorn with the service; its imports happen here, never at CLI start."""
+    try:
+        import uvicorn
+    except ImportError:
+        raise UsageError("serve needs the server extra: pip install 'urdflint[server]'") from None
+    if args.workers < 1 or not 0 <= args.port < 65536:
+        raise UsageError("--workers must be at least 1 and --port between 0 and 65535")
+    from urdflint.server.limits import LimitError, Limits
+
+    try:
+        Limits.from_env()
+    except LimitError as exc:
+        raise UsageError(str(exc)) from None
+    uvicorn.run(
+        "urdflint.server.app:app",
+        host=args.host,
+        port=args.port,
+        workers=args.workers,
+        log_level=args.log_level,
+        timeout_keep_alive=5,
+        timeout_graceful_shutdown=10,
+    )
+    return EXIT_OK

@@ -1,0 +1,215 @@
+"""Runs the rules over a document and stamps their hits into findings."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lxml import etree
+
+from urdflint.engine import registry, suppress
+from urdflint.engine.config import Settings
+from urdflint.engine.context import Context
+from urdflint.engine.registry import Hit, Rule
+from urdflint.model import optional
+from urdflint.model.document import Document
+from urdflint.model.finding import Finding, Severity
+
+log = logging.getLogger(__name__)
+
+LIBRARY_FAMILIES = frozenset({"X", "U"})  # what a xacro library file (no <link>) gets
+EXTRAS = optional.EXTRAS
+
+
+@dataclass
+class Result:
+    """What linting one file produced."""
+
+    path: str
+    findings: list[Finding]
+    document: Document | None = None
+    skipped: dict[str, tuple[str, ...]] = field(default_factory=dict)  # code -> missing modules
+    ran: tuple[str, ...] = ()  # codes of the rules that ran to completion on the document
+
+    @property
+    def crashed(self) -> bool:
+        return any(f.code == "U001" for f in self.findings)
+
+
+XACRO_SUFFIXES = (".xacro",)
+
+
+def is_xacro(path: str) -> bool:
+    return path.lower().endswith(XACRO_SUFFIXES)
+
+
+def lint_bytes(
+    source: bytes,
+    path: str,
+    settings: Settings | None = None,
+    context: Context | None = None,
+    base_dir: Path | None = None,
+) -> Result:
+    """Lint one URDF given as bytes; ``path`` is for display, ``base_dir`` for relative meshes."""
+    settings = settings or Settings()
+    doc = Document(
+        path,
+        source,
+        targets=frozenset(settings.targets),
+        settings=settings,
+        context=context,
+        base_dir=base_dir,
+    )
+    return lint_document(doc, settings)
+
+
+def load(path: Path, shown: str, settings: Settings, context: Context | None = None) -> Document:
+    """A file on disk as a document: a URDF, or a xacro file expanded first (no ROS needed)."""
+    context = context or Context()
+    if is_xacro(shown):
+        from urdflint.sources import xacro as xacro_input
+
+        return xacro_input.document(path, shown, settings, context)
+    return Document(
+        shown,
+        path.read_bytes(),
+        targets=frozenset(settings.targets),
+        settings=settings,
+        context=context,
+        base_dir=path.parent,
+    )
+
+
+def lint_path(path: Path, shown: str, settings: Settings, context: Context | None = None) -> Result:
+    """Lint a file on disk (see :func:`load`)."""
+    return lint_document(load(path, shown, settings, context), settings)
+
+
+def lint_document(doc: Document, settings: Settings) -> Result:
+    rules = registry.load_rules()
+    enabled = settings.enabled() - settings.ignored_for(doc.path)
+    raw: list[tuple[Rule, Hit]] = []
+    skipped: dict[str, tuple[str, ...]] = {}
+    ran: list[str] = []
+    for code in sorted(enabled):
+        rule = rules[code]
+        if rule.requires_robot and not doc.ok:
+            continue
+        if doc.library and rule.family not in LIBRARY_FAMILIES:
+            continue
+        if rule.targets and rule.targets.isdisjoint(settings.targets):
+            continue  # a target rule for consumers this run does not aim at
+        if code in ("U002", "U003"):
+            continue  # produced below, from the suppressions themselves
+        missing = tuple(m for m in rule.needs if not optional.available(m))
+        if missing:
+            skipped[code] = missing
+            continue
+        hits = _run(rule, doc, settings)
+        raw.extend(hits)
+        if not (code != "U001" and hits and hits[0][0].code == "U001"):
+            ran.append(code)  # a crashed rule is reported by its U001 error instead
+
+    directives: list[suppress.Directive] = []
+    if doc.ok:
+        directives, malformed = suppress.parse(doc.robot)
+        if "U003" in enabled:
+            ran.append("U003")
+            raw.extend((rules["U003"], Hit(m.comment, m.message)) for m in malformed)
+
+    findings: list[Finding] = []
+    for rule, hit in raw:
+        covering = (
+            [d for d in directives if d.covers(rule.code, hit.element, doc.root)] if doc.ok else []
+        )
+        if covering:
+            for directive in covering:
+                directive.used.add(rule.code)
+            continue
+        findings.append(stamp(doc, rule, hit, settings))
+    if "U002" in enabled:
+        ran.append("U002")
+        findings.extend(_unused(doc, directives, enabled, settings))
+    findings.sort(key=Finding.sort_key)
+    return Result(doc.path, findings, doc, skipped, tuple(sorted(ran)))
+
+
+def _run(rule: Rule, doc: Document, settings: Settings) -> list[tuple[Rule, Hit]]:
+    """The rule's hits, or one U001 internal-error hit if the rule raised."""
+    try:
+        if rule.options:
+            hits = list(rule.check(doc, settings.options(rule.code)))
+        else:
+            hits = list(rule.check(doc))
+    except Exception as exc:  # a broken rule must not stop the run
+        log.debug("rule %s crashed on %s", rule.code, doc.path, exc_info=True)
+        message = f"rule {rule.code} {rule.name} crashed: {type(exc).__name__}: {exc}"
+        return [(registry.RULES["U001"], Hit(None, message, line=1))]
+    return [(rule, hit) for hit in hits]
+
+
+def _unused(
+    doc: Document, directives: list[suppress.Directive], enabled: set[str], settings: Settings
+) -> Iterable[Finding]:
+    rule = registry.RULES["U002"]
+    for directive in directives:
+        unused = sorted(
+            code for code in directive.codes if code in enabled and code not in directive.used
+        )
+        if unused and not directive.used:
+            what = (
+                "file"
+                if directive.target is None
+                else f"<{etree.QName(directive.target).localname}>"
+            )
+            hit = Hit(
+                directive.comment,
+                f"suppression of {', '.join(unused)} on this {what} matched no finding",
+                line=directive.line,
+            )
+            yield stamp(doc, rule, hit, settings)
+
+
+def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
+    """Turn a rule's hit into a finding: path, line, column, element, code, severity."""
+    element = hit.element
+    line = (
+        hit.line
+        or (element.sourceline if element is not None else None)
+        or (doc.root.sourceline if doc.root is not None else 1)
+    )
+    column = hit.column or (doc.column_of(element, line) if element is not None else 1)
+    configured = settings.severity.get(rule.code)
+    severity = configured or hit.severity or rule.severity
+    shown, message = doc.path, hit.message
+    anchor = element if element is not None else doc.root  # robot-level: the <robot> tag
+    if doc.origin is not None and anchor is not None and not hit.line:
+        origin = doc.origin(anchor)
+        if origin is not None:
+            shown, line = origin.path, origin.line
+            column = origin.column
+            if not origin.exact:
+                message += f" (line {line} of the expanded document; see --emit-expanded)"
+    path = (
+        doc.element_path(element)
+        if not isinstance(element, etree._Comment)
+        else _comment_path(doc, element)
+    )
+    return Finding(
+        path=shown,
+        line=max(int(line), 1),
+        column=max(int(column), 1),
+        code=rule.code,
+        name=rule.name,
+        severity=Severity(severity),
+        message=message,
+        element=path,
+        fix=hit.fix or rule.fix,
+    )
+
+
+def _comment_path(doc: Document, comment: etree._Element) -> str:
+    parent = comment.getparent()
+    return doc.element_path(parent) if parent is not None else "/robot"

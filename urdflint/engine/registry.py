@@ -1,0 +1,190 @@
+"""Rule metadata and the ``@rule`` decorator.
+
+A rule is a generator over one parsed :class:`~urdflint.document.Document` that
+yields :class:`Hit` objects. The engine (``linter.py``) stamps each hit with the
+path, line, element path, code, name and the configured severity.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import re
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from urdflint.model.finding import Severity
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+CODE_RE = re.compile(r"^[A-Z][0-9]{3}$")
+NAME_RE = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
+SECTIONS = ("## What it does", "## Why is this bad?", "## How to fix")
+
+FAMILIES: dict[str, str] = {
+    "X": "document",
+    "S": "structure",
+    "I": "inertial",
+    "C": "collision, visual and geometry",
+    "G": "Gazebo extensions",
+    "J": "joints",
+    "T": "transmissions",
+    "P": "physics (Pinocchio)",
+    "U": "urdflint itself",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Hit:
+    """What a rule reports: an element and a one-sentence message.
+
+    ``element`` is ``None`` for robot-level findings. ``severity`` lets a
+    target-aware rule lower or raise its default for the selected targets; a
+    severity set in the user's configuration always wins. ``line`` and
+    ``column`` override the element's position (parse errors have no element).
+    """
+
+    element: etree._Element | None
+    message: str
+    fix: str | None = None
+    severity: Severity | None = None
+    line: int | None = None
+    column: int | None = None
+
+
+Check = Callable[..., Iterator[Hit]]
+
+
+@dataclass(frozen=True, slots=True)
+class Rule:
+    code: str
+    name: str
+    severity: Severity
+    check: Check
+    doc: str
+    fix: str | None = None
+    needs: tuple[str, ...] = ()
+    options: Mapping[str, Any] = field(default_factory=dict)
+    requires_robot: bool = True
+    targets: frozenset[str] = frozenset()  # runs only for these targets (empty: always)
+
+    @property
+    def family(self) -> str:
+        return self.code[0]
+
+    @property
+    def summary(self) -> str:
+        return self.doc.strip().splitlines()[0].strip() if self.doc.strip() else self.name
+
+    def section(self, heading: str) -> str:
+        """The text under ``## heading`` in the rule's docstring ('' if absent)."""
+        match = re.search(rf"^## {re.escape(heading)}\s*\n(.*?)(?=^## |\Z)", self.doc, re.S | re.M)
+        return match.group(1).strip() if match else ""
+
+
+RULES: dict[str, Rule] = {}
+
+
+def rule(
+    code: str,
+    name: str,
+    severity: Severity,
+    *,
+    fix: str | None = None,
+    needs: tuple[str, ...] = (),
+    options: Mapping[str, Any] | None = None,
+    requires_robot: bool = True,
+    targets: tuple[str, ...] = (),
+) -> Callable[[Check], Check]:
+    """Register a rule; the module docstring is its documentation page.
+
+    ``fix`` is the default how-to-fix sentence for its findings; ``needs``
+    names optional modules (``"pinocchio"``, ``"trimesh"``) the check imports
+    lazily; ``options`` maps option names to defaults, and a rule with options
+    is called as ``check(doc, opts)``; ``requires_robot=False`` lets the rule
+    run on documents that are not a usable ``<robot>`` (the X001/X002 rules);
+    ``targets`` limits a target rule to runs that select one of those targets.
+    """
+
+    def register(fn: Check) -> Check:
+        if not CODE_RE.fullmatch(code) or not NAME_RE.fullmatch(name):
+            raise RuntimeError(f"malformed rule declaration: {code} {name}")
+        if code in RULES or any(r.name == name for r in RULES.values()):
+            raise RuntimeError(f"duplicate rule declaration: {code} {name}")
+        module = inspect.getmodule(fn)
+        doc = inspect.cleandoc(module.__doc__ or "") if module else ""
+        RULES[code] = Rule(
+            code,
+            name,
+            severity,
+            fn,
+            doc,
+            fix,
+            tuple(needs),
+            dict(options or {}),
+            requires_robot,
+            frozenset(targets),
+        )
+        return fn
+
+    return register
+
+
+def lookup(key: str) -> Rule | None:
+    """Find a rule by code (``I005``) or name (``triangle-inequality``)."""
+    load_rules()
+    key = key.strip()
+    if key.upper() in RULES:
+        return RULES[key.upper()]
+    for candidate in RULES.values():
+        if candidate.name == key.lower():
+            return candidate
+    return None
+
+
+def expand(selectors: list[str] | tuple[str, ...]) -> set[str]:
+    """Turn codes, names and code prefixes (``I``, ``I00``) into a set of codes.
+
+    Raises ``ValueError`` naming the first selector that matches no rule.
+    """
+    load_rules()
+    codes: set[str] = set()
+    for raw in selectors:
+        key = raw.strip()
+        if not key:
+            continue
+        if key.upper() == "ALL":
+            codes.update(RULES)
+            continue
+        found = lookup(key)
+        if found is not None:
+            codes.add(found.code)
+            continue
+        prefix = [
+            c
+            for c in RULES
+            if c.startswith(key.upper()) and re.fullmatch(r"[A-Z]\d{0,2}", key.upper())
+        ]
+        if not prefix:
+            raise ValueError(f"unknown rule or rule family {raw!r}")
+        codes.update(prefix)
+    return codes
+
+
+# The rule catalogues: plug-in packages that register their rules when imported. Rules sit
+# above the engine (they import the registry), so the engine loads them by name, not by an
+# import statement.
+RULE_PACKAGES: tuple[str, ...] = ("urdflint.rules",)
+_loaded = False
+
+
+def load_rules() -> dict[str, Rule]:
+    """Import the rule catalogues (once) and return the registry."""
+    global _loaded
+    if not _loaded:
+        for package in RULE_PACKAGES:
+            importlib.import_module(package)
+        _loaded = True
+    return RULES

@@ -1,0 +1,38 @@
+"""What a formatter knows about the run besides the findings, and the one-line summary."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from urdflint.model.finding import Finding, Severity
+
+
+@dataclass(frozen=True)
+class RunInfo:
+    """What a formatter may know about the run besides the findings."""
+
+    tool_version: str
+    files: tuple[str, ...] = ()
+    models: dict[str, Any] = field(default_factory=dict)
+    fail_on: str = "error"  # lowest failing severity, or "never" (JUnit failures)
+    rules: dict[str, tuple[str, ...]] = field(default_factory=dict)  # path -> rule codes run
+
+    def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
+        counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}
+        for finding in findings:
+            counts[str(finding.severity)] += 1
+        return counts
+
+
+def summary_line(findings: Sequence[Finding], run: RunInfo) -> str:
+    counts = run.summary(findings)
+    if not findings:
+        return f"urdflint: no problems in {_plural(counts['files'], 'file')}"
+    parts = [_plural(counts[str(s)], str(s)) for s in reversed(Severity) if counts[str(s)]]
+    return f"urdflint: {', '.join(parts)} in {_plural(counts['files'], 'file')}"
+
+
+def _plural(count: int, word: str) -> str:
+    return f"{count} {word}" if count == 1 else f"{count} {word}s"
