@@ -81,6 +81,7 @@ def test_json_envelope(capsys, no_limit: Path) -> None:
         "message",
         "element",
         "fix",
+        "trace",
     }
     assert finding["element"] == "/robot/joint[@name='shoulder']"
     assert finding["severity"] == "error" and finding["line"] == 4

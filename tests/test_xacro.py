@@ -139,18 +139,19 @@ def test_json_paths_name_the_xacro_and_gazebo_files(rrbot: Path) -> None:
     assert ("G001", "urdf/rrbot.gazebo", line_of(gazebo, "link4")) in where
 
 
-def test_macro_output_is_located_in_the_expanded_document(rrbot: Path, tmp_path: Path) -> None:
+def test_macro_output_is_located_in_the_macro_with_its_call(rrbot: Path) -> None:
     main = rrbot / "urdf" / "rrbot.xacro"
     edit(main, 'm="${mass}"', 'm="${-mass}"', after='<link name="link3">')
-    expanded = tmp_path / "expanded.urdf"
-    proc = run_cli("--select", "I003", "--emit-expanded", str(expanded), str(main))
+    proc = run_cli("--select", "I003", "urdf/rrbot.xacro", cwd=rrbot)
     assert proc.returncode == 1 and proc.stderr == ""
-    first = proc.stdout.splitlines()[0]
-    # the <inertia> comes out of the box_inertia macro: no literal line to point at
-    assert "I003" in first and "of the expanded document; see --emit-expanded" in first
-    line = int(first.split(":")[1])
-    assert "<inertia" in expanded.read_text().splitlines()[line - 1]
-    assert first.startswith(f"{main}:{line}:")
+    first, called = proc.stdout.splitlines()[:2]
+    # the <inertia> comes out of the box_inertia macro: the finding is on the macro's line,
+    # and the call with the bad argument follows
+    inertia = line_of(main, "<inertia ", start='name="box_inertia"')
+    call = line_of(main, 'm="${-mass}"')
+    assert first.startswith(f"urdf/rrbot.xacro:{inertia}:5: error I003 ")
+    assert "expanded document" not in first
+    assert called == f"    in macro `box_inertia`, called from urdf/rrbot.xacro:{call}:7"
 
 
 def test_emit_expanded_writes_the_urdf_that_was_checked(tmp_path: Path) -> None:
@@ -444,7 +445,7 @@ def test_mapping_follows_literal_children_through_conditions(tmp_path: Path) -> 
     assert origin_of(result, "//inertial/mass") == ("robot.xacro", 11, True)
 
 
-def test_mapping_refuses_what_it_cannot_trace(tmp_path: Path) -> None:
+def test_mapping_traces_macros_names_and_repeats(tmp_path: Path) -> None:
     result = mapped(
         tmp_path,
         f"""
@@ -463,16 +464,24 @@ def test_mapping_refuses_what_it_cannot_trace(tmp_path: Path) -> None:
         </robot>
         """,
     )
-    assert origin_of(result, "/robot/link[@name='left_arm']")[2] is False  # named by ${p}
-    # the macro adds a visual beside the literal one: counts differ, no guessing
-    assert origin_of(result, "//link[@name='a']/visual[2]")[2] is False
+    assert origin_of(result, "/robot/link[@name='left_arm']") == ("robot.xacro", 6, True)
+    assert origin_of(result, "//link[@name='a']/visual[1]/geometry/sphere") == (
+        "robot.xacro",
+        4,
+        True,
+    )
+    assert origin_of(result, "//link[@name='a']/visual[2]") == ("robot.xacro", 9, True)
     assert origin_of(result, "//link[@name='a']")[1:] == (7, True)
-    assert origin_of(result, "/robot/link[@name='twice'][1]")[2] is False  # two literals
-    path, line, exact = origin_of(result, "//link[@name='a']/visual[1]/geometry/sphere")
-    assert (path, exact) == ("robot.xacro", False)
+    assert origin_of(result, "/robot/link[@name='twice'][1]")[1:] == (11, True)
+    assert origin_of(result, "/robot/link[@name='twice'][2]")[1:] == (12, True)
     doc = result.document
-    assert doc is not None
-    assert b"<sphere" in doc.source.splitlines()[line - 1]
+    assert doc is not None and doc.origin is not None
+    [sphere] = doc.robot.xpath("//sphere")
+    origin = doc.origin(sphere)
+    assert origin is not None
+    assert [(c.macro, c.path, c.line, c.column) for c in origin.trace] == [
+        ("vis", "robot.xacro", 8, 5)
+    ]
 
 
 def test_mapping_tells_definitions_from_references(tmp_path: Path) -> None:

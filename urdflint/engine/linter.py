@@ -9,13 +9,13 @@ from pathlib import Path
 
 from lxml import etree
 
-from urdflint.engine import registry, suppress
+from urdflint.engine import instances, registry, suppress
 from urdflint.engine.config import Settings
 from urdflint.engine.context import Context
 from urdflint.engine.registry import Hit, Rule
 from urdflint.model import optional
 from urdflint.model.document import Document
-from urdflint.model.finding import Finding, Severity
+from urdflint.model.finding import Call, Finding, Severity
 
 log = logging.getLogger(__name__)
 
@@ -133,6 +133,8 @@ def lint_document(doc: Document, settings: Settings) -> Result:
         ran.append("U002")
         findings.extend(_unused(doc, directives, enabled, settings))
     findings.sort(key=Finding.sort_key)
+    if doc.origin is not None:
+        findings = instances.merge(findings)
     return Result(doc.path, findings, doc, skipped, tuple(sorted(ran)))
 
 
@@ -184,12 +186,12 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     configured = settings.severity.get(rule.code)
     severity = configured or hit.severity or rule.severity
     shown, message = doc.path, hit.message
+    trace: tuple[Call, ...] = ()
     anchor = element if element is not None else doc.root  # robot-level: the <robot> tag
     if doc.origin is not None and anchor is not None and not hit.line:
         origin = doc.origin(anchor)
         if origin is not None:
-            shown, line = origin.path, origin.line
-            column = origin.column
+            shown, line, column, trace = origin.path, origin.line, origin.column, origin.trace
             if not origin.exact:
                 message += f" (line {line} of the expanded document; see --emit-expanded)"
     path = (
@@ -207,6 +209,7 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
         message=message,
         element=path,
         fix=hit.fix or rule.fix,
+        trace=trace,
     )
 
 

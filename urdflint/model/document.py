@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
+from urdflint.model.finding import Call
 from urdflint.model.graph import Graph
 
 if TYPE_CHECKING:  # provided by the engine at run time, see provide()
@@ -60,6 +61,7 @@ class Origin:
     line: int
     column: int = 1
     exact: bool = True
+    trace: tuple[Call, ...] = ()  # the macro calls that produced it, innermost first
 
 
 MAX_BYTES = 64 * 2**20

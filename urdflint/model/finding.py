@@ -27,6 +27,20 @@ class Severity(enum.IntEnum):
 
 
 @dataclass(frozen=True, slots=True)
+class Call:
+    """One macro call on the way from a xacro entry file to a finding's element: the macro
+    ``macro`` was called at ``path:line:column``."""
+
+    macro: str
+    path: str
+    line: int
+    column: int
+
+    def __str__(self) -> str:
+        return f"in macro `{self.macro}`, called from {self.path}:{self.line}:{self.column}"
+
+
+@dataclass(frozen=True, slots=True)
 class Finding:
     """One problem in one file, stamped by the engine (never built by a rule)."""
 
@@ -39,6 +53,7 @@ class Finding:
     message: str
     element: str
     fix: str | None = None
+    trace: tuple[Call, ...] = ()  # xacro: the macro calls behind the element, innermost first
 
     def __post_init__(self) -> None:
         if self.line < 1 or self.column < 1:

@@ -28,7 +28,8 @@ def render(findings: Sequence[Finding], run: RunInfo) -> str:
                 f"file={_prop(f.path)},line={f.line},endLine={f.line},col={f.column},"
                 f"title={_prop(f'urdflint ({f.code})')}"
             )
-            out.append(f"::{LEVEL[f.severity]} {props}::{_data(f'{f.code} {f.name}: {f.message}')}")
+            text = f"{f.code} {f.name}: {f.message}" + "".join(f"\n{c}" for c in f.trace)
+            out.append(f"::{LEVEL[f.severity]} {props}::{_data(text)}")
         out.append("::endgroup::")
     out.append(summary_line(findings, run))
     return "\n".join(out) + "\n"

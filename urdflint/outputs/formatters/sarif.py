@@ -138,7 +138,7 @@ def _relative_uri(posix: PurePosixPath) -> str:
     return quote("/".join(parts) or ".", safe="/")
 
 
-def _result(finding: Finding, index: int, uri: str) -> dict[str, Any]:
+def _result(finding: Finding, index: int, uri: str, uris: dict[str, str]) -> dict[str, Any]:
     result: dict[str, Any] = {
         "ruleId": finding.code,
         "ruleIndex": index,
@@ -161,7 +161,33 @@ def _result(finding: Finding, index: int, uri: str) -> dict[str, Any]:
     }
     if finding.fix:
         result["properties"] = {"fix": finding.fix}
+    if finding.trace:
+        _add_trace(result, finding, uri, uris)
     return result
+
+
+def _location(uri: str, line: int, column: int, message: str | None = None) -> dict[str, Any]:
+    region = {"startLine": line, "startColumn": column, "endLine": line}
+    location: dict[str, Any] = {
+        "physicalLocation": {"artifactLocation": {"uri": uri}, "region": region}
+    }
+    if message is not None:
+        location["message"] = {"text": message}
+    return location
+
+
+def _add_trace(result: dict[str, Any], finding: Finding, uri: str, uris: dict[str, str]) -> None:
+    """xacro: the macro calls as related locations and as a code flow, outermost call first."""
+    calls = list(reversed(finding.trace))
+    related = []
+    for i, call in enumerate(calls, start=1):
+        location = _location(uris[call.path], call.line, call.column, f"calls macro {call.macro}")
+        related.append({"id": i, **location})
+    result["relatedLocations"] = related
+    steps = [{"location": _location(uris[c.path], c.line, c.column, f"calls macro {c.macro}")}
+             for c in calls]  # fmt: skip
+    steps.append({"location": _location(uri, finding.line, finding.column, finding.message)})
+    result["codeFlows"] = [{"threadFlows": [{"locations": steps}]}]
 
 
 def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, Any]:
@@ -172,7 +198,8 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, Any]:
     codes = sorted(samples)
     index = {code: i for i, code in enumerate(codes)}
     cwd = Path.cwd().resolve()
-    uris = {path: artifact_uri(path, cwd) for path in {f.path for f in findings}}
+    paths = {f.path for f in findings} | {c.path for f in findings for c in f.trace}
+    uris = {path: artifact_uri(path, cwd) for path in paths}
     return {
         "$schema": SCHEMA,
         "version": "2.1.0",
@@ -187,7 +214,7 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, Any]:
                     }
                 },
                 "columnKind": "unicodeCodePoints",
-                "results": [_result(f, index[f.code], uris[f.path]) for f in findings],
+                "results": [_result(f, index[f.code], uris[f.path], uris) for f in findings],
             }
         ],
     }

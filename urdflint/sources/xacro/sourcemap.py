@@ -1,0 +1,226 @@
+"""The xacro source map: where each element of the expanded document is written.
+
+xacro works on ``xml.dom.minidom`` trees. While urdflint expands a file, every DOM node
+xacro parses is marked with its source (which file, at which byte) by an instrumented
+expat builder, and every node xacro clones carries its original's mark: a macro body
+instantiated by a call (``m.body.cloneNode``) gets the call site pushed on its call chain,
+a block (``*param``/``**param``) keeps the chain of the caller that wrote it. Conditions,
+includes and ``xacro:element`` move or rename nodes in place, so their marks survive as
+they are.
+
+After expansion the final DOM and the lxml tree the rules read are walked in parallel
+(both hold the same elements and comments in the same order); each lxml element then
+knows its :class:`~urdflint.model.document.Origin`: the file, line and column of its
+start tag, and the chain of macro calls that produced it, innermost first.
+"""
+
+from __future__ import annotations
+
+import bisect
+import xml.dom
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+from xml.dom.expatbuilder import ExpatBuilderNS
+
+from lxml import etree
+
+from urdflint.model.document import Origin
+from urdflint.model.finding import Call
+
+MARK = "_urdflint_mark"  # the attribute set on minidom nodes: (source, byte offset, chain)
+
+# A chain link: the macro called and the (source index, byte offset) of its call.
+Link = tuple[str, int, int]
+Mark = tuple[int, int, tuple[Link, ...]]
+
+
+@dataclass(eq=False)
+class SourceFile:
+    """One file xacro parsed, kept as bytes so expat's byte offsets index it."""
+
+    path: str  # absolute
+    shown: str  # as findings name it
+    data: bytes
+
+    @cached_property
+    def _starts(self) -> list[int]:
+        starts = [0]
+        find = self.data.find
+        index = find(b"\n")
+        while index >= 0:
+            starts.append(index + 1)
+            index = find(b"\n", index + 1)
+        return starts
+
+    def position(self, offset: int) -> tuple[int, int]:
+        """1-based line and (character) column of a byte offset."""
+        line = bisect.bisect_right(self._starts, offset)
+        start = self._starts[line - 1]
+        return line, len(self.data[start:offset].decode("utf-8", "replace")) + 1
+
+
+def builder_class(files: list[SourceFile], index: int) -> type[ExpatBuilderNS]:
+    """An expat DOM builder that marks each element and comment with its byte offset."""
+
+    class Builder(ExpatBuilderNS):  # type: ignore[misc]
+        def start_element_handler(self, name: str, attributes: Any) -> None:
+            offset = self._parser.CurrentByteIndex
+            super().start_element_handler(name, attributes)
+            setattr(self.curNode, MARK, (index, offset, ()))
+
+        def comment_handler(self, data: str) -> None:
+            offset = self._parser.CurrentByteIndex
+            super().comment_handler(data)
+            last = self.curNode.lastChild
+            if last is not None and last.nodeType == xml.dom.Node.COMMENT_NODE:
+                setattr(last, MARK, (index, offset, ()))
+
+    return Builder
+
+
+@dataclass
+class Tracker:
+    """Carries marks through xacro's clones while one expansion runs."""
+
+    files: list[SourceFile] = field(default_factory=list)
+    pending: tuple[str, Any] | None = None  # a macro call about to clone its body
+    active: tuple[Link, ...] | None = None  # the chain given to the body being cloned
+
+    def parse(self, data: bytes, path: str, shown: str) -> Any:
+        """``data`` as a marked minidom document."""
+        index = next((i for i, f in enumerate(self.files) if f.path == path), None)
+        if index is None:
+            index = len(self.files)
+            self.files.append(SourceFile(path, shown, data))
+        return builder_class(self.files, index)().parseString(data)
+
+    def calling(self, original: Callable[..., Any]) -> Callable[..., Any]:
+        """Wrap xacro's ``handle_macro_call``: the next macro body cloned belongs to this call."""
+
+        def handle_macro_call(node: Any, macros: Any, symbols: Any) -> Any:
+            if not node.tagName.startswith("xacro:"):
+                return original(node, macros, symbols)
+            saved = self.pending
+            self.pending = (node.tagName[6:], node)
+            try:
+                return original(node, macros, symbols)
+            finally:
+                self.pending = saved
+
+        return handle_macro_call
+
+    def cloning(self, original: Callable[..., Any]) -> Callable[..., Any]:
+        """Wrap minidom's ``_clone_node`` so that clones keep (and extend) their marks."""
+
+        def clone_node(node: Any, deep: bool, owner: Any) -> Any:
+            if self.pending is not None and getattr(node, "tagName", None) == "xacro:macro":
+                name, call = self.pending
+                self.pending = None
+                mark = getattr(call, MARK, None)
+                chain = ((name, mark[0], mark[1]), *mark[2]) if mark is not None else ()
+                saved, self.active = self.active, chain
+                try:
+                    return clone_node(node, deep, owner)
+                finally:
+                    self.active = saved
+            copy = original(node, deep, owner)
+            mark = getattr(node, MARK, None)
+            if mark is not None:
+                setattr(copy, MARK, mark if self.active is None else (*mark[:2], self.active))
+            return copy
+
+        return clone_node
+
+
+def _dom_nodes(node: Any) -> Iterator[Any]:
+    """Elements and comments of a minidom subtree in document order (what lxml keeps)."""
+    stack = [node]
+    element, comment = xml.dom.Node.ELEMENT_NODE, xml.dom.Node.COMMENT_NODE
+    while stack:
+        current = stack.pop()
+        yield current
+        kids = [c for c in current.childNodes if c.nodeType in (element, comment)]
+        stack.extend(reversed(kids))
+
+
+def _local(tag: str) -> str:
+    return tag.rpartition("}")[2] if tag.startswith("{") else tag.rpartition(":")[2]
+
+
+class SourceMap:
+    """``el -> Origin``: where an element of the expanded document is written.
+
+    Built lazily on the first question, by walking the final DOM and the lxml tree in
+    parallel. If the two walks disagree (they never should), nothing is mapped and every
+    element falls back to its line in the expanded document.
+    """
+
+    def __init__(self, files: list[SourceFile], dom: Any, shown: str, expanded: bytes) -> None:
+        self.files = files
+        self.dom = dom
+        self.shown = shown
+        self.expanded = expanded
+        self._marks: dict[Any, Mark] | None = None
+        self._origins: dict[Mark, Origin] = {}
+
+    def _build(self, root: etree._Element) -> dict[Any, Mark]:
+        marks: dict[Any, Mark] = {}
+        dom_nodes = _dom_nodes(self.dom.documentElement)
+        for el in root.iter():
+            if not isinstance(el.tag, str) and not isinstance(el, etree._Comment):
+                continue  # processing instructions are dropped by the document parser
+            node = next(dom_nodes, None)
+            if node is None:
+                return {}
+            if isinstance(el.tag, str):
+                if node.nodeType != xml.dom.Node.ELEMENT_NODE or _local(node.tagName) != _local(
+                    el.tag
+                ):
+                    return {}
+            elif node.nodeType != xml.dom.Node.COMMENT_NODE:
+                return {}
+            mark = getattr(node, MARK, None)
+            if mark is not None:
+                marks[el] = mark
+        self.dom = None  # the DOM is not needed any more
+        return marks
+
+    def mark(self, el: etree._Element) -> Mark | None:
+        if self._marks is None:
+            self._marks = self._build(el.getroottree().getroot()) if self.dom is not None else {}
+        return self._marks.get(el)
+
+    def __call__(self, el: etree._Element) -> Origin | None:
+        mark = self.mark(el)
+        if mark is None:
+            return self._expanded(el)
+        found = self._origins.get(mark)
+        if found is None:
+            file = self.files[mark[0]]
+            line, column = file.position(mark[1])
+            chain = tuple(self._call(link) for link in mark[2])
+            found = self._origins[mark] = Origin(file.shown, line, column, True, chain)
+        return found
+
+    def _expanded(self, el: etree._Element) -> Origin | None:
+        """The element's line in the expanded document, marked not exact."""
+        line = el.sourceline
+        if not line:
+            return None
+        text = self._lines[line - 1] if line <= len(self._lines) else b""
+        tag = el.tag if isinstance(el.tag, str) else ""
+        index = text.find(b"<" + _local(tag).encode()) if tag else -1
+        column = len(text[:index].decode("utf-8", "replace")) + 1 if index >= 0 else 1
+        return Origin(self.shown, line, column, exact=False)
+
+    @cached_property
+    def _lines(self) -> list[bytes]:
+        return self.expanded.splitlines()
+
+    def _call(self, link: Link) -> Call:
+        macro, index, offset = link
+        file = self.files[index]
+        line, column = file.position(offset)
+        return Call(macro, file.shown, line, column)
