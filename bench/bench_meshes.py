@@ -64,7 +64,8 @@ def main() -> int:
 
     from urdflint.engine import config, linter, registry
     from urdflint.engine.context import Context
-    from urdflint.sources.meshes import TRIMESH_TYPES, assets_resolver
+    from urdflint.sources.mesh_cache import assets_resolver
+    from urdflint.sources.mesh_formats import TRIMESH_TYPES
 
     registry.load_rules()
     settings = config.Settings(select=MESH_RULES)

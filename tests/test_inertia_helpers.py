@@ -8,11 +8,11 @@ import random
 import pytest
 from lxml import etree
 
+from urdflint.model.bodies import bodies
 from urdflint.model.document import Document
 from urdflint.model.geometry import Shape, read_shape
 from urdflint.model.inertia import (
     aabb,
-    bodies,
     eigenvalues,
     judge,
     matrix,

@@ -15,7 +15,9 @@ from urdflint.engine import config, linter, registry
 from urdflint.engine.context import Context
 from urdflint.model import optional
 from urdflint.model.finding import Severity
-from urdflint.sources.meshes import MeshCache, scale_hint, suffix
+from urdflint.sources.mesh_cache import MeshCache
+from urdflint.sources.mesh_formats import suffix
+from urdflint.sources.meshes import scale_hint
 
 trimesh = pytest.importorskip("trimesh")
 

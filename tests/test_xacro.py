@@ -254,7 +254,7 @@ ERRORS = {
         "rrbot.xacro",
         '<xacro:arg name="camera" default="true"/>',
         "",
-        "undefined substitution argument camera",
+        "xacro argument 'camera' has no value",
     ),
     "macro-parameter": (
         "rrbot.xacro",

@@ -30,7 +30,8 @@ from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q
-from urdflint.sources.meshes import TRIMESH_TYPES, load, references
+from urdflint.sources.mesh_formats import TRIMESH_TYPES
+from urdflint.sources.meshes import load, references
 
 
 @rule(

@@ -34,7 +34,7 @@ from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import blocks_for, keys_of
 from urdflint.model.structure import q
-from urdflint.sources.meshes import suffix
+from urdflint.sources.mesh_formats import suffix
 
 STL = frozenset({"stl", "stla", "stlb"})
 

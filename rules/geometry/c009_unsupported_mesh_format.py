@@ -39,7 +39,8 @@ from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q
 from urdflint.model.targets import LABELS
-from urdflint.sources.meshes import KNOWN_FORMATS, TARGET_FORMATS, format_name, references, suffix
+from urdflint.sources.mesh_formats import KNOWN_FORMATS, TARGET_FORMATS, format_name, suffix
+from urdflint.sources.meshes import references
 
 READS = {
     "gazebo-classic": "STL, Collada and OBJ",

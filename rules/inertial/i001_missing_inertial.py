@@ -44,9 +44,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import massless_verdict
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import massless_verdict
 
 
 @rule(

@@ -28,9 +28,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import bodies
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import bodies, principal_moments, tolerance
+from urdflint.model.inertia import principal_moments, tolerance
 from urdflint.model.values import fmt
 
 

@@ -32,9 +32,10 @@ import statistics
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import Bodies, bodies
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import PLACEHOLDER, Bodies, bodies, primitive_box, times
+from urdflint.model.inertia import PLACEHOLDER, primitive_box, times
 from urdflint.model.values import fmt
 
 DEFAULT_SIZE = 0.5  # metres, when the link has no primitive geometry

@@ -41,9 +41,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import Bodies, bodies, body_box, geometry_box, has_mesh
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import Bodies, Vec, apply, bodies, body_box, geometry_box, has_mesh
+from urdflint.model.inertia import Vec, apply
 from urdflint.model.values import fmt
 
 MARGIN = 0.1

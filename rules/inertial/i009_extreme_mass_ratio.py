@@ -32,9 +32,10 @@ from collections.abc import Iterator
 from typing import Any
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import GAZEBO_MASSLESS, MOVABLE, bodies
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import GAZEBO_MASSLESS, MOVABLE, bodies, times
+from urdflint.model.inertia import times
 from urdflint.model.values import fmt
 
 

@@ -30,16 +30,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import GAZEBO_MASSLESS, bodies, massless_verdict
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import (
-    GAZEBO_MASSLESS,
-    TINY_MOMENT,
-    bodies,
-    judge,
-    massless_verdict,
-    principal_moments,
-)
+from urdflint.model.inertia import TINY_MOMENT, judge, principal_moments
 from urdflint.model.values import fmt
 
 

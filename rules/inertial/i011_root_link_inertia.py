@@ -22,9 +22,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import bodies
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import bodies
 from urdflint.model.values import fmt
 
 

@@ -150,14 +150,15 @@ def run(args: argparse.Namespace) -> int:
         finder = SettingsFinder(args)
     except config.ConfigError as exc:
         raise UsageError(str(exc)) from None
-    files, errors = collect(args.paths)
+    context = run_context(args)
+    files, errors = collect(args.paths, context.workspace)
     files = _changed_only(args, files)
     accepted = _load_baseline(args)
     if args.emit_expanded and not (len(files) == 1 and linter.is_xacro(files[0])):
         raise UsageError("--emit-expanded needs exactly one xacro file")
     reports = _reports(args)
     outcome = Run(errors=errors)
-    _lint_files(args, files, finder, outcome)
+    _lint_files(args, files, finder, outcome, context)
     findings = _finish(args, finder, outcome, accepted)
     for message in outcome.errors:
         print(f"urdflint: error: {message}", file=sys.stderr)
@@ -172,11 +173,10 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _lint_files(
-    args: argparse.Namespace, files: list[str], finder: SettingsFinder, outcome: Run
+    args: argparse.Namespace, files: list[str], finder: SettingsFinder, outcome: Run, context: Any
 ) -> None:
     from urdflint.engine import linter
 
-    context = run_context(args)
     for name in files:
         is_stdin = name == "-"
         shown = args.stdin_filename if is_stdin else name

@@ -76,5 +76,10 @@ def gate_options(parser: argparse.ArgumentParser) -> None:
 
 def run_context(args: argparse.Namespace) -> Any:
     from urdflint.engine.context import Context
+    from urdflint.sources import workspace
 
-    return Context(package_paths={name: Path(folder) for name, folder in args.package_path})
+    paths = [Path(p) for p in getattr(args, "paths", [getattr(args, "path", ".")]) if p != "-"]
+    return Context(
+        package_paths={name: Path(folder) for name, folder in args.package_path},
+        workspace=workspace.discover(paths or [Path.cwd()]),
+    )

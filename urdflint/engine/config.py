@@ -32,6 +32,7 @@ KEYS = frozenset(
         "package-paths",
         "expect",
         "xacro-args",
+        "per-file-xacro-args",
     }
 )
 EXPECT_KEYS = frozenset({"mass", "mass-tolerance", "com", "com-tolerance", "q"})
@@ -79,7 +80,24 @@ class Settings:
     package_paths: dict[str, Path] = field(default_factory=dict)  # resolved against the file
     expect: Expect = field(default_factory=Expect)
     xacro_args: dict[str, str] = field(default_factory=dict)
+    per_file_xacro_args: tuple[tuple[str, dict[str, str]], ...] = ()
     source: Path | None = None  # the file these settings came from
+
+    def xacro_args_for(self, path: str) -> dict[str, str]:
+        """``xacro-args``, then each matching ``per-file-xacro-args`` table (later wins)."""
+        found = dict(self.xacro_args)
+        for pattern, table in self.per_file_xacro_args:
+            if self._matches(path, pattern):
+                found.update(table)
+        return found
+
+    def _matches(self, path: str, pattern: str) -> bool:
+        base = self.source.parent if self.source else Path.cwd()
+        try:
+            rel = Path(path).resolve().relative_to(base.resolve()).as_posix()
+        except ValueError:
+            rel = Path(path).as_posix()
+        return fnmatch.fnmatch(rel, pattern) or fnmatch.fnmatch(Path(rel).name, pattern)
 
     def enabled(self) -> set[str]:
         """Codes of the rules that run."""
@@ -170,6 +188,11 @@ def from_mapping(data: dict[str, Any], source: Path | None = None) -> Settings:
         settings = replace(settings, per_file_ignores=pairs)
     if "rules" in data:
         settings = replace(settings, rule_options=_rule_options(data["rules"]))
+    return _inputs(settings, data, source)
+
+
+def _inputs(settings: Settings, data: dict[str, Any], source: Path | None) -> Settings:
+    """The keys about the model's inputs: package paths, expectations, xacro arguments."""
     if "package-paths" in data:
         base = source.parent if source is not None else Path.cwd()
         settings = replace(settings, package_paths=_package_paths(data["package-paths"], base))
@@ -181,8 +204,23 @@ def from_mapping(data: dict[str, Any], source: Path | None = None) -> Settings:
             isinstance(v, (str, int, float, bool)) for v in table.values()
         ):
             raise ConfigError("'xacro-args' must be a table of name = value")
-        settings = replace(settings, xacro_args={str(k): _arg_text(v) for k, v in table.items()})
+        settings = replace(settings, xacro_args=_xacro_table("xacro-args", table))
+    if "per-file-xacro-args" in data:
+        table = data["per-file-xacro-args"]
+        if not isinstance(table, dict) or not all(isinstance(v, dict) for v in table.values()):
+            raise ConfigError("'per-file-xacro-args' must be a table of glob = {name = value}")
+        pairs = tuple(
+            (str(glob), _xacro_table(f"per-file-xacro-args.{glob}", args))
+            for glob, args in table.items()
+        )
+        settings = replace(settings, per_file_xacro_args=pairs)
     return settings
+
+
+def _xacro_table(key: str, table: dict[str, Any]) -> dict[str, str]:
+    if not all(isinstance(v, (str, int, float, bool)) for v in table.values()):
+        raise ConfigError(f"'{key}' must be a table of name = value")
+    return {str(k): _arg_text(v) for k, v in table.items()}
 
 
 def _arg_text(value: object) -> str:

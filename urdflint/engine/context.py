@@ -17,7 +17,9 @@ if TYPE_CHECKING:
 class Context:
     """Run-wide state. ``root`` confines every file access (the HTTP service sets it).
 
-    ``package_paths`` come from the command line and win over the configuration's.
+    ``package_paths`` come from the command line and win over the configuration's, which
+    win over ``workspace``: the packages found below the checked paths and their git root
+    (see :mod:`urdflint.sources.workspace`).
     The mesh cache is created on first use, so a run whose rules read no mesh never
     imports trimesh.
     """
@@ -26,11 +28,14 @@ class Context:
     root: Path | None = None
     environ: Mapping[str, str] | None = None
     q: dict[str, float] = field(default_factory=dict)
+    workspace: dict[str, Path] = field(default_factory=dict)
     _meshes: Any = None
 
     def resolver(self, base_dir: Path | None, settings: Settings) -> Resolver:
         paths = {**settings.package_paths, **self.package_paths}
-        return Resolver(base_dir, paths, root=self.root, environ=self.environ)
+        return Resolver(
+            base_dir, paths, root=self.root, environ=self.environ, workspace=self.workspace
+        )
 
     @property
     def meshes(self) -> Any:

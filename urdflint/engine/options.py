@@ -126,7 +126,10 @@ class SettingsFinder:
         if "ignore" in extra:
             extra["ignore"] = settings.ignore + tuple(extra["ignore"])
         if "xacro_args" in extra:
-            extra["xacro_args"] = {**settings.xacro_args, **extra["xacro_args"]}
+            given = extra["xacro_args"]
+            extra["xacro_args"] = {**settings.xacro_args, **given}
+            # the command line wins over per-file tables too: applied last, for every file
+            extra["per_file_xacro_args"] = (*settings.per_file_xacro_args, ("*", given))
         expect = settings.expect
         if self.expect_mass is not None:
             mass, absolute, fraction = self.expect_mass

@@ -1,14 +1,36 @@
-"""Which files a run lints: the paths given, folders searched for robot descriptions."""
+"""Which files a run lints: the paths given, and in folders the robot descriptions.
+
+A folder yields every ``*.urdf`` and the *entry* xacro files: the ``*.xacro`` files
+(``*.urdf.xacro`` included) that no other xacro file of the folder includes, and that are
+robots themselves: links, joints or macro calls under ``<robot>``, not only definitions.
+Macro libraries and fragments, the files only included by others, are checked as part of
+the entry files that include them, so a file is never reported twice.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import fnmatch
+import os
+import re
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from lxml import etree
+
+from urdflint.model.document import XACRO_NS, make_parser
+
 SKIP_DIRS = {"node_modules", "__pycache__", "build", "install", "log"}
+MAX_SCAN_BYTES = 2 * 2**20  # a bigger xacro file is linted, not scanned for includes
+INCLUDE_RE = re.compile(rb"<[\w.-]*:?include\b[^>]*?\bfilename\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
+FIND_RE = re.compile(r"^\$\((?:find|find-pkg-share)\s+([^)\s]+)\)(.*)$")
+EXPR_RE = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
+DEFINITIONS = frozenset({"macro", "property", "arg", "include"})
+CONDITIONS = frozenset({"if", "unless"})
 
 
-def collect(paths: Sequence[str]) -> tuple[list[str], list[str]]:
+def collect(
+    paths: Sequence[str], packages: Mapping[str, Path] | None = None
+) -> tuple[list[str], list[str]]:
     """Files to lint (``-`` kept as is) and one error message per unusable path."""
     files: list[str] = []
     errors: list[str] = []
@@ -18,16 +40,8 @@ def collect(paths: Sequence[str]) -> tuple[list[str], list[str]]:
             continue
         path = Path(raw)
         if path.is_dir():
-            found = sorted(
-                p
-                for p in path.rglob("*.urdf")
-                if p.is_file()
-                and not any(
-                    part.startswith(".") or part in SKIP_DIRS
-                    for part in p.relative_to(path).parts[:-1]
-                )
-            )
-            files.extend(str(p) for p in found)
+            urdfs, xacros = _below(path)
+            files.extend(str(p) for p in sorted(urdfs + entries(xacros, packages or {})))
         elif path.is_file():
             files.append(raw)
         elif path.exists():
@@ -35,3 +49,113 @@ def collect(paths: Sequence[str]) -> tuple[list[str], list[str]]:
         else:
             errors.append(f"{raw}: no such file or directory")
     return list(dict.fromkeys(files)), errors
+
+
+def _below(folder: Path) -> tuple[list[Path], list[Path]]:
+    urdfs: list[Path] = []
+    xacros: list[Path] = []
+    for dirpath, dirnames, filenames in os.walk(folder):
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d not in SKIP_DIRS)
+        for name in filenames:
+            lower = name.lower()
+            if lower.endswith(".urdf"):
+                urdfs.append(Path(dirpath) / name)
+            elif lower.endswith(".xacro"):
+                xacros.append(Path(dirpath) / name)
+    return urdfs, xacros
+
+
+def entries(xacros: Sequence[Path], packages: Mapping[str, Path]) -> list[Path]:
+    """The xacro files among ``xacros`` that are robots of their own (see the module doc)."""
+    patterns: list[str] = []
+    texts: dict[Path, bytes | None] = {}
+    for path in xacros:
+        data = _read(path)
+        texts[path] = data
+        if data is not None:
+            patterns.extend(_include_patterns(path, data, packages))
+    found: list[Path] = []
+    for path in xacros:
+        full = os.path.normpath(os.path.abspath(path))
+        if any(fnmatch.fnmatchcase(full, pattern) for pattern in patterns):
+            continue  # included by another file: checked there
+        data = texts[path]
+        if data is None or is_robot(data, path.name.lower().endswith(".urdf.xacro")):
+            found.append(path)
+    return found
+
+
+def _read(path: Path) -> bytes | None:
+    try:
+        if path.stat().st_size > MAX_SCAN_BYTES:
+            return None
+        return path.read_bytes()
+    except OSError:
+        return None
+
+
+def _include_patterns(path: Path, data: bytes, packages: Mapping[str, Path]) -> list[str]:
+    """What the file's ``<xacro:include>`` tags can name, as absolute glob patterns."""
+    patterns: list[str] = []
+    for match in INCLUDE_RE.finditer(data):
+        spec = (match.group(1) or match.group(2) or b"").decode("utf-8", "replace").strip()
+        if not spec:
+            continue
+        found = FIND_RE.match(spec)
+        if found is not None:
+            package, rest = found.group(1), found.group(2)
+            folder = packages.get(package)
+            base = os.path.abspath(folder) if folder is not None else "*" + os.sep + package
+            pattern = base + EXPR_RE.sub("*", rest)
+        elif spec.startswith("$(") or spec.startswith("${"):
+            pattern = "*" + EXPR_RE.sub("*", spec)
+        else:
+            pattern = os.path.join(os.path.abspath(path.parent), EXPR_RE.sub("*", spec))
+        if _specific(pattern):
+            patterns.append(os.path.normpath(pattern) if "*" not in pattern[:1] else pattern)
+    return patterns
+
+
+def _specific(pattern: str) -> bool:
+    """The pattern names a file, not any file: its base name keeps a literal stem
+    (``${prefix}_arm.xacro`` does, ``${file}`` and ``${name}.urdf.xacro`` do not)."""
+    stem = os.path.basename(pattern).replace("*", "")
+    for suffix in (".xacro", ".urdf", ".gazebo", ".trans", ".xml"):
+        stem = stem.removesuffix(suffix)
+    return len(stem.strip("._-")) >= 2
+
+
+def is_robot(data: bytes, includes: bool = False) -> bool:
+    """Whether a xacro text writes robot content: links, joints or macro calls, not only
+    definitions; with ``includes`` (a ``*.urdf.xacro`` file that defines no macro), includes
+    count as content, since a robot file may be nothing but includes. Unreadable XML counts
+    as a robot, so that its error is reported."""
+    try:
+        root = etree.fromstring(data, make_parser())
+    except (etree.XMLSyntaxError, ValueError):
+        return True
+    if includes and any(etree.QName(el).localname == "macro" for el in root.iter("{*}macro")):
+        includes = False
+    return _has_content(root, includes)
+
+
+def _has_content(element: etree._Element, includes: bool) -> bool:
+    for child in element:
+        if not isinstance(child.tag, str):
+            continue
+        namespace, _, local = (
+            child.tag[1:].partition("}") if child.tag[:1] == "{" else ("", "", child.tag)
+        )
+        if namespace == XACRO_NS or (child.prefix == "xacro"):
+            if local == "include" and includes:
+                return True
+            if local in DEFINITIONS:
+                continue
+            if local in CONDITIONS:
+                if _has_content(child, includes):
+                    return True
+                continue
+            return True  # a macro call, xacro:element, xacro:insert_block
+        if local in ("link", "joint"):
+            return True
+    return False

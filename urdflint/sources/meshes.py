@@ -1,29 +1,21 @@
-"""Mesh references, their resolution, and meshes loaded once per run (trimesh, lazily).
+"""Mesh references and their resolution; the meshes they name, loaded once per run.
 
-The pure-Python half (:func:`references`, :func:`resolved`, the format tables)
-serves the static rules C004, C008 and C009 and never imports trimesh. The
-:class:`MeshCache` loads a file with ``trimesh.load(path, force="mesh")`` the
-first time a rule asks for it at a given scale, and keeps the answer for the
-whole run: C005, C006, C007, I007 and I008 share one load per (file, scale).
-Nothing here raises on a bad file: what trimesh cannot read becomes
-:attr:`MeshInfo.error`.
+The pure-Python half (:func:`references`, :func:`resolved`, and the format tables
+in :mod:`urdflint.sources.mesh_formats`) serves the static rules C004, C008 and C009
+and never imports trimesh. :func:`load` hands a reference to the run's
+:class:`~urdflint.sources.mesh_cache.MeshCache`, which reads each file through
+trimesh once per (file, scale).
 """
 
 from __future__ import annotations
 
-import logging
-import math
-import warnings
-from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
-from dataclasses import dataclass, field
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 from weakref import WeakKeyDictionary
 
-from urdflint.model import optional
 from urdflint.model.geometry import Shape, read_shape
 from urdflint.model.values import has_xacro
+from urdflint.sources.mesh_cache import MeshCache, MeshInfo
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -31,61 +23,27 @@ if TYPE_CHECKING:
     from urdflint.model.document import Document
     from urdflint.sources.resolve import Resolved
 
-Vec = tuple[float, float, float]
-Mat = tuple[Vec, Vec, Vec]
-ZERO: Vec = (0.0, 0.0, 0.0)
+__all__ = [
+    "MAX_EXTENT",
+    "MIN_EXTENT",
+    "PART_MAX",
+    "PART_MIN",
+    "MeshCache",
+    "MeshInfo",
+    "MeshRef",
+    "load",
+    "references",
+    "resolved",
+    "scale_hint",
+    "suspicious_size",
+]
 
-MAX_MESH_BYTES = 100 * 2**20
-_QUIET = logging.NullHandler()
-# What trimesh is asked to read, by suffix (the file type it is given).
-TRIMESH_TYPES: Mapping[str, str] = {
-    "stl": "stl",
-    "stla": "stl",
-    "stlb": "stl",
-    "obj": "obj",
-    "dae": "dae",
-    "ply": "ply",
-    "off": "off",
-    "glb": "glb",
-    "gltf": "gltf",
-}
-FORMAT_NAMES: Mapping[str, str] = {
-    "stl": "STL",
-    "stla": "STL",
-    "stlb": "STL",
-    "obj": "OBJ",
-    "dae": "Collada",
-    "gltf": "glTF",
-    "glb": "glTF",
-    "fbx": "FBX",
-    "msh": "MSH",
-    "ply": "PLY",
-}
-# Mesh formats each target's loader accepts (suffix, lower case).
-# Gazebo Classic 9/11 common::MeshManager: stl/stla/stlb, dae, obj (OBJ since 2016).
-# gz-common 5 (Garden and later) adds glTF and FBX through assimp (Fortress: the first three).
-# MuJoCo's compiler reads STL, OBJ and its own MSH (no Collada).
-TARGET_FORMATS: Mapping[str, frozenset[str]] = {
-    "gazebo-classic": frozenset({"stl", "stla", "stlb", "dae", "obj"}),
-    "gz-sim": frozenset({"stl", "stla", "stlb", "dae", "obj", "gltf", "glb", "fbx"}),
-    "mujoco": frozenset({"stl", "obj", "msh"}),
-}
-KNOWN_FORMATS = frozenset().union(*TARGET_FORMATS.values(), TRIMESH_TYPES)
+Vec = tuple[float, float, float]
 
 # REP 103: metres. Robot parts are between a millimetre and ten metres across.
 MAX_EXTENT = 10.0
 MIN_EXTENT = 0.001
 PART_MIN, PART_MAX = 0.01, 2.0  # what a suggested scale should produce
-
-
-def suffix(uri: str) -> str:
-    """The lower-case extension of a mesh URI (``''`` when it has none)."""
-    name = uri.strip().replace("\\", "/").rsplit("/", 1)[-1]
-    return name.rsplit(".", 1)[-1].lower() if "." in name else ""
-
-
-def format_name(ext: str) -> str:
-    return FORMAT_NAMES.get(ext, f".{ext}" if ext else "extension-less")
 
 
 # -- references ----------------------------------------------------------------------------
@@ -175,319 +133,3 @@ def scale_hint(extent: float) -> list[tuple[float, str]]:
 def suspicious_size(info: MeshInfo) -> bool:
     """Whether the largest extent after scale is outside 1 mm .. 10 m (C006's finding)."""
     return info.error is None and not (MIN_EXTENT <= info.largest <= MAX_EXTENT)
-
-
-# -- loaded meshes -------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, slots=True)
-class Solid:
-    """Mass properties at unit density: of the mesh itself, or of its convex hull."""
-
-    kind: str  # "mesh" or "convex hull"
-    volume: float  # m^3
-    com: Vec  # in the mesh frame (after scale)
-    tensor: Mat  # about the centre of mass, at density 1 kg/m^3
-
-    def inertia(self, mass: float) -> Mat:
-        k = mass / self.volume
-        return tuple(tuple(v * k for v in row) for row in self.tensor)  # type: ignore[return-value]
-
-
-@dataclass(frozen=True)
-class MeshInfo:
-    """What one mesh file is, after ``scale``; ``error`` says why it could not be read.
-
-    ``unsupported`` marks errors that are not the file's fault (a format trimesh does
-    not read, a loader that is not installed): C009 or nobody reports those.
-    """
-
-    path: Path
-    format: str
-    faces: int = 0
-    vertices: int = 0
-    lo: Vec = ZERO
-    hi: Vec = ZERO
-    extents: Vec = ZERO
-    error: str | None = None
-    unsupported: bool = False
-    size: int = 0  # bytes on disk
-    _mesh: Any = field(default=None, repr=False, compare=False)
-    _memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
-
-    @property
-    def ok(self) -> bool:
-        return self.error is None
-
-    @property
-    def largest(self) -> float:
-        return max(self.extents)
-
-    @property
-    def watertight(self) -> bool:
-        """Every edge is shared by exactly two triangles (computed on first use)."""
-        if "watertight" not in self._memo:
-            with _quiet_numpy():
-                self._memo["watertight"] = bool(self.ok and self._mesh.is_watertight)
-        found: bool = self._memo["watertight"]
-        return found
-
-    @property
-    def volume(self) -> float | None:
-        """Enclosed volume in m³: only for watertight, consistently wound meshes."""
-        if "volume" not in self._memo:
-            self._memo["volume"] = _volume(self._mesh) if self.watertight else None
-        found: float | None = self._memo["volume"]
-        return found
-
-    def solid(self) -> Solid | None:
-        """Mass properties of the mesh when it encloses a volume, else of its convex hull."""
-        if "solid" not in self._memo:
-            self._memo["solid"] = _solid(self._mesh, self.volume) if self.ok else None
-        found: Solid | None = self._memo["solid"]
-        return found
-
-    def inertia(self, mass: float) -> tuple[Mat, str] | None:
-        """Inertia tensor about the centre of mass at ``mass`` kg, and which solid gave it."""
-        solid = self.solid()
-        return None if solid is None else (solid.inertia(mass), solid.kind)
-
-    def center_mass(self) -> tuple[Vec, str] | None:
-        """Centre of mass (uniform density) in the mesh frame, and which solid gave it."""
-        solid = self.solid()
-        return None if solid is None else (solid.com, solid.kind)
-
-
-def _vec(values: Any) -> Vec:
-    return (float(values[0]), float(values[1]), float(values[2]))
-
-
-def _solid(mesh: Any, volume: float | None) -> Solid | None:
-    with _quiet_numpy():
-        return _solid_of(mesh, volume)
-
-
-def _solid_of(mesh: Any, volume: float | None) -> Solid | None:
-    try:
-        if volume is not None and volume > 0:
-            return _properties(mesh, "mesh")
-        hull = mesh.convex_hull
-        if hull is None or len(hull.faces) == 0 or not hull.volume > 0:
-            return None
-        return _properties(hull, "convex hull")
-    except Exception:  # qhull on flat or degenerate input
-        return None
-
-
-def _properties(mesh: Any, kind: str) -> Solid | None:
-    props = mesh.mass_properties
-    volume = float(props["volume"])
-    if not (volume > 0 and math.isfinite(volume)):
-        return None
-    tensor = tuple(_vec(row) for row in props["inertia"])
-    return Solid(kind, volume, _vec(props["center_mass"]), tensor)  # type: ignore[arg-type]
-
-
-def _one_line(exc: BaseException) -> str:
-    text = str(exc).strip().splitlines()
-    first = text[0].strip() if text else ""
-    message = f"{type(exc).__name__}: {first}" if first else type(exc).__name__
-    return message if len(message) <= 200 else message[:197] + "..."
-
-
-def trimesh_load(path: Path, file_type: str, resolver: Any = None) -> Any:
-    """The one trimesh call urdflint makes per file (the bench times the same call)."""
-    import trimesh
-
-    return trimesh.load(
-        str(path), file_type=file_type, force="mesh", resolver=resolver, skip_materials=True
-    )
-
-
-class MeshCache:
-    """Meshes loaded during one run, by resolved path and scale.
-
-    ``root`` confines every file access (the HTTP service): a mesh outside it is not
-    read, and the files a mesh refers to (an OBJ's ``.mtl``, a glTF's buffers) are
-    looked up only inside it.
-    """
-
-    def __init__(self, root: Path | None = None, max_bytes: int = MAX_MESH_BYTES) -> None:
-        self.root = root.resolve() if root is not None else None
-        self.max_bytes = max_bytes
-        # trimesh logs skipped textures and broken references as warnings; without a handler
-        # Python would print them on stderr. Findings carry what matters.
-        logging.getLogger("trimesh").addHandler(_QUIET)
-        self._cache: dict[tuple[Path, Vec], MeshInfo] = {}
-        self.loads = 0  # trimesh.load calls made
-        self.bytes = 0  # bytes of the files given to trimesh
-
-    def load(self, path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> MeshInfo:
-        try:
-            real = path.resolve()
-        except (OSError, RuntimeError):
-            real = path
-        key = (real, (float(scale[0]), float(scale[1]), float(scale[2])))
-        info = self._cache.get(key)
-        if info is None:
-            info = self._cache[key] = self._load(real, key[1])
-        return info
-
-    def __len__(self) -> int:
-        return len(self._cache)
-
-    def _load(self, path: Path, scale: Vec) -> MeshInfo:
-        ext = path.suffix.lower().lstrip(".")
-        fail = _Failure(path, ext)
-        if self.root is not None and not path.is_relative_to(self.root):
-            return fail("the file lies outside the allowed folder")
-        try:
-            size = path.stat().st_size
-        except OSError as exc:
-            return fail(f"cannot read the file ({exc.strerror or exc})")
-        if ext not in TRIMESH_TYPES:
-            return fail(f"urdflint cannot read {format_name(ext)} meshes", unsupported=True)
-        if size > self.max_bytes:
-            return fail(
-                f"the file is {size / 2**20:.0f} MB, over the {self.max_bytes / 2**20:.0f} MB "
-                "limit for reading meshes",
-                unsupported=True,
-            )
-        if size == 0:
-            return fail("the file is empty")
-        if ext == "dae":
-            if not optional.available("collada"):
-                return fail("reading Collada needs pycollada (pip install pycollada)", True)
-            if _has_doctype(path):
-                return fail("the Collada file declares a DOCTYPE or entities; it was not read")
-        try:
-            self.loads += 1
-            self.bytes += size
-            with _quiet_numpy():
-                mesh = trimesh_load(path, TRIMESH_TYPES[ext], self._resolver(path))
-                return _describe(mesh, path, ext, scale, size)
-        except Exception as exc:  # any parse failure becomes a finding, never a crash
-            return fail(f"trimesh could not read it ({_one_line(exc)})")
-        except RecursionError as exc:  # pragma: no cover - deeply nested scenes
-            return fail(f"trimesh could not read it ({_one_line(exc)})")
-
-    def _resolver(self, path: Path) -> Any:
-        return assets_resolver(path, self.root)
-
-
-class _Failure:
-    def __init__(self, path: Path, ext: str) -> None:
-        self.path, self.ext = path, ext
-
-    def __call__(self, reason: str, unsupported: bool = False) -> MeshInfo:
-        return MeshInfo(self.path, self.ext, error=reason, unsupported=unsupported)
-
-
-def _has_doctype(path: Path) -> bool:
-    try:
-        with path.open("rb") as handle:
-            head = handle.read(1 << 16)
-    except OSError:
-        return False
-    return b"<!DOCTYPE" in head or b"<!ENTITY" in head
-
-
-def _describe(mesh: Any, path: Path, ext: str, scale: Vec, size: int) -> MeshInfo:
-    import numpy as np
-
-    faces, vertices = len(mesh.faces), len(mesh.vertices)
-    if faces == 0:
-        return MeshInfo(path, ext, vertices=vertices, size=size, error=_empty_reason(path))
-    if not np.isfinite(mesh.vertices).all():
-        return MeshInfo(
-            path, ext, faces, vertices, size=size, error="it has NaN or infinite vertices"
-        )
-    if scale != (1.0, 1.0, 1.0):
-        matrix = np.eye(4)
-        matrix[0, 0], matrix[1, 1], matrix[2, 2] = scale
-        mesh.apply_transform(matrix)  # flips the winding for a mirroring scale
-    lo, hi = mesh.bounds
-    return MeshInfo(
-        path, ext, faces, vertices, _vec(lo), _vec(hi), _vec(hi - lo), size=size, _mesh=mesh
-    )
-
-
-def _empty_reason(path: Path) -> str:
-    """Why a file gave no triangles, when its first bytes tell (an LFS pointer, a web page)."""
-    try:
-        with path.open("rb") as handle:
-            head = handle.read(512).lstrip().lower()
-    except OSError:
-        head = b""
-    if head.startswith(b"version https://git-lfs"):
-        return "the file is a Git LFS pointer, not the mesh (run git lfs pull)"
-    if head.startswith((b"<!doctype html", b"<html")):
-        return "the file is an HTML page, not a mesh"
-    return "the file holds no triangles"
-
-
-@contextmanager
-def _quiet_numpy() -> Iterator[None]:
-    """Degenerate meshes make numpy divide by zero: the result is checked, not printed."""
-    import numpy as np
-
-    with warnings.catch_warnings(), np.errstate(all="ignore"):
-        warnings.simplefilter("ignore")
-        yield
-
-
-def _volume(mesh: Any) -> float | None:
-    with _quiet_numpy():
-        return _volume_of(mesh)
-
-
-def _volume_of(mesh: Any) -> float | None:
-    try:
-        if not mesh.is_winding_consistent:
-            return None
-        value = float(mesh.volume)
-        if value < 0:  # consistently inward normals: the same solid
-            mesh.invert()
-            value = -value
-    except Exception:
-        return None
-    return value if value > 0 and math.isfinite(value) else None
-
-
-def assets_resolver(path: Path, root: Path | None = None) -> Any:
-    """What trimesh may read besides the mesh itself.
-
-    Only glTF needs other files for its geometry (``.bin`` buffers): they are read from
-    the mesh's folder, inside ``root`` when set. Everything else (an OBJ's ``.mtl``,
-    textures of Collada and OBJ files) is refused: urdflint needs the triangles only, and
-    decoding texture images would double the loading time.
-    """
-    from trimesh.resolvers import FilePathResolver, Resolver
-
-    class NoAssets(Resolver):  # type: ignore[misc]
-        def __init__(self) -> None:
-            pass
-
-        def get(self, key: str) -> bytes:
-            raise KeyError(f"{key!r}: urdflint reads no mesh assets")
-
-        def write(self, name: str, data: Any) -> None:
-            raise KeyError(name)
-
-        def namespaced(self, namespace: str) -> NoAssets:
-            return self
-
-        def keys(self) -> list[str]:
-            return []
-
-    class Confined(FilePathResolver):  # type: ignore[misc]
-        def get(self, name: str) -> bytes:
-            target = (Path(self.parent) / name.strip()).resolve()
-            if root is not None and not target.is_relative_to(root):
-                raise KeyError(f"{name!r} lies outside the allowed folder")
-            data: bytes = super().get(name)
-            return data
-
-    if path.suffix.lower() == ".gltf":
-        return Confined(str(path.parent))
-    return NoAssets()

@@ -1,7 +1,8 @@
 """Where a mesh or ``$(find pkg)`` points: ``package://``, ``file://`` and relative paths, no ROS.
 
 Package folders are found, in order, from explicit package paths (``--package-path
-NAME=DIR``, then ``package-paths`` in the configuration), ``ROS_PACKAGE_PATH``,
+NAME=DIR``, then ``package-paths`` in the configuration), the workspace (every
+``package.xml`` below the checked paths and their git root), ``ROS_PACKAGE_PATH``,
 ``AMENT_PREFIX_PATH`` (``share/NAME``), and a ``package.xml`` search upward from the
 URDF (each ancestor folder and its direct sub-folders). With ``root`` set (the HTTP
 service), every answer must lie inside ``root`` and nothing outside it is searched.
@@ -68,10 +69,12 @@ class Resolver:
         *,
         root: Path | None = None,
         environ: Mapping[str, str] | None = None,
+        workspace: Mapping[str, Path] | None = None,
     ) -> None:
         self.base_dir = base_dir
         self.root = root.resolve() if root is not None else None
         self.package_paths = dict(package_paths or {})
+        self.workspace = dict(workspace or {})
         env = os.environ if environ is None else environ
         # The environment and upward search are for the command line; a confined
         # resolver (the service) only sees explicit paths inside its root.
@@ -103,6 +106,11 @@ class Resolver:
         if name in self.package_paths:
             folder = self.package_paths[name]
             tried.append(f"package path {name}={folder}")
+            if folder.is_dir() and self._inside(folder):
+                return folder, tuple(tried)
+        if name in self.workspace:
+            folder = self.workspace[name]
+            tried.append(f"workspace package {name} at {folder}")
             if folder.is_dir() and self._inside(folder):
                 return folder, tuple(tried)
         for base in self.ros_paths:

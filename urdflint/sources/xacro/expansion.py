@@ -121,7 +121,7 @@ class Expansion(Problems):
         x.init_stacks(self.main)
         x.all_includes = []
         dom = x.parse(None, self.main)
-        x.process_doc(dom, mappings=dict(self.settings.xacro_args), verbosity=1)
+        x.process_doc(dom, mappings=self.settings.xacro_args_for(self.main), verbosity=1)
         name = re.sub(r"-+", "-", self.shown)
         banner = dom.createComment(
             f" expanded by urdflint with xacro from {name}; findings marked"

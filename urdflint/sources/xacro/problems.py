@@ -58,6 +58,14 @@ class Problems:
         else:
             code = refused.code if refused is not None else "X010"
             message = refused.message if refused is not None else _describe(exc)
+            missing = _missing_arg(chain)
+            if missing is not None and not self._includer():
+                message = (
+                    f"xacro argument '{missing}' has no value: it has no default and was not"
+                    f" given; pass it with --xacro-arg {missing}:=VALUE or set it under"
+                    " [tool.urdflint.xacro-args] (for this file only:"
+                    " [tool.urdflint.per-file-xacro-args])"
+                )
             if macro and refused is None and f"'{macro}'" not in message:
                 message += f" in macro '{macro}'"
             needle = (refused.needle if refused is not None else None) or _needle(chain)
@@ -240,3 +248,13 @@ def _sentence(message: str) -> str:
     if len(message) > 1 and message[0].isupper() and not message[1].isupper():
         message = message[0].lower() + message[1:]
     return message
+
+
+def _missing_arg(chain: list[BaseException]) -> str | None:
+    """The name of an argument used with ``$(arg name)`` that has no value."""
+    from xacro.substitution_args import ArgException
+
+    for exc in chain:
+        if isinstance(exc, ArgException) and exc.args:
+            return str(exc.args[0])
+    return None

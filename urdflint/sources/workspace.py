@@ -1,0 +1,89 @@
+"""ROS packages found without flags: every ``package.xml`` below the paths being checked and
+below their git root, as ``colcon`` and ``catkin`` would find them in a workspace.
+
+A folder with a ``package.xml`` is a package (packages do not nest, so the walk does not
+descend into it); folders marked ``COLCON_IGNORE``, ``CATKIN_IGNORE`` or ``AMENT_IGNORE``,
+hidden folders and build outputs are skipped, as the ROS build tools skip them.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+from pathlib import Path
+
+from urdflint.sources.resolve import package_name
+
+IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
+SKIP_DIRS = frozenset({"node_modules", "__pycache__", "build", "install", "log", "devel"})
+MAX_FOLDERS = 20_000  # a walk stops here (a home folder is not a workspace)
+
+
+def git_root(path: Path) -> Path | None:
+    """The top of the git work tree holding ``path`` (a ``.git`` folder or file), if any."""
+    start = path if path.is_dir() else path.parent
+    for folder in (start, *start.parents):
+        if (folder / ".git").exists():
+            return folder
+    return None
+
+
+def roots_for(paths: Iterable[Path]) -> list[Path]:
+    """Where to look for packages: each folder given, the folder of each file, the git root
+    above them, and, outside git, the folder holding the file's own package (``src/``)."""
+    found: list[Path] = []
+    for raw in paths:
+        path = raw.resolve()
+        if not path.exists():
+            continue
+        folder = path if path.is_dir() else path.parent
+        found.append(folder)
+        top = git_root(folder)
+        if top is not None:
+            found.append(top)
+            continue
+        for ancestor in (folder, *folder.parents):
+            if (ancestor / "package.xml").is_file():
+                found.append(ancestor.parent)
+                break
+    return list(dict.fromkeys(found))
+
+
+def packages_below(roots: Iterable[Path]) -> dict[str, Path]:
+    """Package name -> folder for every package below ``roots`` (the first found wins)."""
+    packages: dict[str, Path] = {}
+    seen: set[Path] = set()
+    budget = [MAX_FOLDERS]
+    for root in roots:
+        _walk(root, packages, seen, budget)
+    return packages
+
+
+def _walk(root: Path, packages: dict[str, Path], seen: set[Path], budget: list[int]) -> None:
+    stack = [root]
+    while stack and budget[0] > 0:
+        folder = stack.pop()
+        if folder in seen:
+            continue
+        seen.add(folder)
+        budget[0] -= 1
+        try:
+            names = set(os.listdir(folder))
+        except OSError:
+            continue
+        if any(marker in names for marker in IGNORE_MARKERS):
+            continue
+        if "package.xml" in names:
+            name = package_name(folder)
+            if name is not None:
+                packages.setdefault(name, folder)
+                continue
+        subs = sorted(
+            (n for n in names if not n.startswith(".") and n not in SKIP_DIRS), reverse=True
+        )
+        stack.extend(folder / n for n in subs if (folder / n).is_dir())
+
+
+def discover(paths: Iterable[Path]) -> dict[str, Path]:
+    """The packages a run over ``paths`` can use for ``$(find)`` and ``package://``."""
+    return packages_below(roots_for(paths))
