@@ -59,5 +59,5 @@ def test_readme_rule_table_is_current() -> None:
     match = re.search(r"<!-- rules:start -->\n(.*?)<!-- rules:end -->", readme, re.S)
     assert match, "README.md lacks the <!-- rules:start --> / <!-- rules:end --> markers"
     assert match.group(1) == docs.rule_table(), (
-        "README rule table is stale: run python -m urdflint.docs"
+        "README rule table is stale: run python -m urdflint.engine.docs"
     )

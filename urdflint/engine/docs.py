@@ -60,5 +60,5 @@ def update_readme(path: str = "README.md") -> bool:
     return new != text
 
 
-if __name__ == "__main__":  # python -m urdflint.docs  (refreshes README's rule table)
+if __name__ == "__main__":  # python -m urdflint.engine.docs  (refreshes README's rule table)
     print("README.md updated" if update_readme() else "README.md already current")

@@ -185,7 +185,7 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     column = hit.column or (doc.column_of(element, line) if element is not None else 1)
     configured = settings.severity.get(rule.code)
     severity = configured or hit.severity or rule.severity
-    shown, message = doc.path, hit.message
+    shown, message = hit.path or doc.path, hit.message
     trace: tuple[Call, ...] = ()
     anchor = element if element is not None else doc.root  # robot-level: the <robot> tag
     if doc.origin is not None and anchor is not None and not hit.line:

@@ -52,6 +52,7 @@ class Hit:
     severity: Severity | None = None
     line: int | None = None
     column: int | None = None
+    path: str | None = None  # with ``line``: a position in another file (a xacro include)
 
 
 Check = Callable[..., Iterator[Hit]]

@@ -62,7 +62,7 @@ def mesh_box(doc: Document, shape: Shape) -> tuple[Vec, Vec] | None:
     bounds = provided("mesh_bounds", doc)(shape)
     if bounds is None:
         return None
-    return transform_box(bounds, rpy_matrix(shape.rpy), shape.xyz)
+    return transform_box(bounds, rpy_matrix(shape.rpy), shape.xyz)  # type: ignore[arg-type]
 
 
 def geometry_box(

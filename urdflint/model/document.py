@@ -76,6 +76,7 @@ class XmlProblem:
     message: str
     line: int = 1
     column: int = 1
+    path: str | None = None  # xacro: the (shown) file the problem is in, when not the main file
 
 
 def make_parser() -> etree.XMLParser:

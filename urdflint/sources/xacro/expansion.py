@@ -167,7 +167,7 @@ class Expansion(Problems):
             "handle_macro_call",
             self.tracker.calling(counting(x, x.handle_macro_call, self.macro_calls)),
         )
-        put(minidom, "_clone_node", self.tracker.cloning(minidom._clone_node))
+        put(minidom, "_clone_node", self.tracker.cloning(minidom._clone_node))  # type: ignore[attr-defined]
         put(sa, "_eval_find", self._find)
         put(sa, "_eval_env", self._env)
         put(sa, "_eval_optenv", self._optenv)

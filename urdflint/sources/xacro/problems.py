@@ -86,7 +86,9 @@ class Problems:
         message = _sentence(message)
         if path is None or path == self.main:
             return XmlProblem(code, message, line or 1, column or 1)
-        where = self.shown_path(path) + (f" line {line}" if line else "")
+        if line:  # located in an included file: the finding goes there
+            return XmlProblem(code, message, line, column or 1, self.shown_path(path))
+        where = self.shown_path(path)
         if where not in message:
             message += f" (in {where})"
         line, column = self._include_line(path, filestack)

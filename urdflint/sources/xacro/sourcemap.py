@@ -66,12 +66,12 @@ def builder_class(files: list[SourceFile], index: int) -> type[ExpatBuilderNS]:
 
     class Builder(ExpatBuilderNS):  # type: ignore[misc]
         def start_element_handler(self, name: str, attributes: Any) -> None:
-            offset = self._parser.CurrentByteIndex
+            offset = self._parser.CurrentByteIndex  # type: ignore[attr-defined]
             super().start_element_handler(name, attributes)
             setattr(self.curNode, MARK, (index, offset, ()))
 
         def comment_handler(self, data: str) -> None:
-            offset = self._parser.CurrentByteIndex
+            offset = self._parser.CurrentByteIndex  # type: ignore[attr-defined]
             super().comment_handler(data)
             last = self.curNode.lastChild
             if last is not None and last.nodeType == xml.dom.Node.COMMENT_NODE:
