@@ -23,6 +23,7 @@ import argparse
 import sys
 import time
 import xml.dom.minidom
+from functools import partial
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -99,10 +100,10 @@ def main() -> int:
             doc = xacro_input.document(path, name, Settings(), context)
             if not doc.ok:
                 continue  # needs arguments, or fails upstream: nothing to time
-            t_plain = best(lambda: plain(path, context), args.repeat)
-            t_mapped = best(lambda: mapped(path, context), args.repeat)
+            t_plain = best(partial(plain, path, context), args.repeat)
+            t_mapped = best(partial(mapped, path, context), args.repeat)
             try:
-                t_bare = best(lambda: bare(path, packages), args.repeat)
+                t_bare = best(partial(bare, path, packages), args.repeat)
             except Exception:
                 t_bare = t_plain
             totals[0] += t_plain

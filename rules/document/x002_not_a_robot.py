@@ -27,4 +27,5 @@ from urdflint.model.finding import Severity
 def check(doc: Document) -> Iterator[Hit]:
     problem = doc.problem
     if problem is not None and problem.code == "X002":
-        yield Hit(None, problem.message, line=problem.line, column=problem.column, path=problem.path)
+        line, column = problem.line, problem.column
+        yield Hit(None, problem.message, line=line, column=column, path=problem.path)

@@ -39,7 +39,8 @@ from urdflint.model.finding import Severity
 def check(doc: Document) -> Iterator[Hit]:
     problem = doc.problem
     if problem is not None and problem.code == "X011":
-        yield Hit(None, problem.message, line=problem.line, column=problem.column, path=problem.path)
+        line, column = problem.line, problem.column
+        yield Hit(None, problem.message, line=line, column=column, path=problem.path)
     elif doc.library and doc.ok:
         contents = _contents(doc)
         yield Hit(
