@@ -13,7 +13,11 @@ lints the entry with only the rule under test, and sorts the outcome:
 - ``dup``: found at the right file:line, but more than once (per-instance findings
   that were not merged into one);
 - ``elsewhere``: new findings of that code, none at the right file:line;
-- ``missed``: no new finding.
+- ``missed``: no new finding;
+- ``broken``: the planted copy no longer expands (X010).
+
+``trace_ok`` counts findings whose outermost macro call is in the entry's package,
+``count_ok`` those that name as many instances ("(for links a, b)") as the probe saw.
 
 Defects (one site per macro and kind: the first element of the body that the expansion
 keeps, in a place where the rule applies):
@@ -28,6 +32,10 @@ false ``xacro:if``) is learnt from one probe expansion per entry in which every
 candidate carries a marker attribute; the probe reads the expanded document only, not
 urdflint's source map, so it does not depend on what is measured. Sites whose element
 is not expanded, or not where the rule applies, are counted as ``n/a`` and not planted.
+
+Each (file, macro, kind) is planted once, with the first entry that expands it
+(``--all-entries``: with every such entry). Runs in a few minutes on the 72 xacro entries
+of /work/realpkgs/ws/src with two processes.
 
 Entries: ``entries.json`` in the workspace or up to two folders above it (a list of
 ``{"entry": "pkg/path/in/package.xacro", "args": {...}}``, paths relative to the
@@ -167,7 +175,7 @@ def macros(text: str) -> list[Macro]:
 def prefix_param(params: str) -> str | None:
     """The macro parameter a link name is built from, for a ``${prefix}no_such_link``."""
     names = [n for star, n in PARAM_RE.findall(QUOTED_RE.sub("", params)) if not star]
-    for want in ("prefix", "tf_prefix", "name", "side", "parent"):
+    for want in ("prefix", "name", "side", "suffix", "parent"):
         for name in names:
             if want in name.lower():
                 return name
@@ -313,6 +321,15 @@ def package_paths_cached(workspace: Path) -> dict[str, Path]:
     return _PATHS[workspace]
 
 
+def merged(message: str) -> int:
+    """How many instances of a macro line a finding stands for, from its message."""
+    named = re.search(r" \(for (?:\w+ )?(.*?)(?: and (\d+) more)?\)$", message)
+    if named:
+        return len(named.group(1).split(", ")) + int(named.group(2) or 0)
+    counted = re.search(r" \((\d+) instances of this macro line\)$", message)
+    return int(counted.group(1)) if counted else 1
+
+
 def key(f) -> tuple:
     return (f.code, f.path, f.line, f.column, f.message)
 
@@ -341,7 +358,8 @@ class EntryReport:
     findings: int = 0  # every rule, before planting
     baseline: list[tuple] = field(default_factory=list)  # findings of the planted kinds
     files: list[str] = field(default_factory=list)
-    sites: list[tuple[Site, str, int]] = field(default_factory=list)  # site, params, instances
+    # site, G001 macro params, instances, instances one merged finding stands for
+    sites: list[tuple[Site, str, int, int]] = field(default_factory=list)
     candidates: list[tuple[str, str, str]] = field(default_factory=list)  # (file, macro, kind)
     shared: int = 0  # live sites already planted with an earlier entry
     seconds: float = 0.0
@@ -391,7 +409,7 @@ def survey(entry: str, args: dict[str, str]) -> EntryReport:
         for kind in KINDS:
             only = {r: [s for s in c if s.kind == kind] for r, c in candidates.items()}
             live.update(probe(entry, args, texts, only, params) or {})
-    chosen: dict[tuple[str, int, str], Site] = {}
+    chosen: dict[tuple[str, str, str], Site] = {}
     for rel, sites in candidates.items():
         for site in sites:
             macro_key = (rel, site.macro, site.kind)
@@ -402,13 +420,26 @@ def survey(entry: str, args: dict[str, str]) -> EntryReport:
                 chosen[macro_key] = site
     report.candidates = sorted({(s.file, s.macro, s.kind) for c in candidates.values() for s in c})
     for site in sorted(chosen.values(), key=lambda s: (s.file, s.offset, s.kind)):
-        report.sites.append((site, params.get(site.ident, ""), live[site.ident][0]))
+        count, _, expected = live[site.ident]
+        report.sites.append((site, params.get(site.ident, ""), count, expected))
     report.seconds = time.perf_counter() - started
     return report
 
 
-def probe(entry, args, texts, candidates, params) -> dict[int, tuple[int, bool]] | None:
-    """ident -> (instances in the expanded document, all of them where the rule applies)."""
+def instance_name(el: etree._Element) -> str | None:
+    """The name a merged finding gives this instance: the nearest named element's name."""
+    node: etree._Element | None = el
+    while node is not None:
+        name = node.get("reference") if node.tag == "gazebo" else node.get("name")
+        if name is not None and node.tag in ("link", "joint", "gazebo"):
+            return name
+        node = node.getparent()
+    return None
+
+
+def probe(entry, args, texts, candidates, params) -> dict[int, tuple[int, bool, int]] | None:
+    """ident -> (instances in the expanded document, all of them where the rule applies,
+    how many instances one merged finding should stand for)."""
     assert WORK is not None
     try:
         for rel, sites in candidates.items():
@@ -422,14 +453,22 @@ def probe(entry, args, texts, candidates, params) -> dict[int, tuple[int, bool]]
     if doc is None or not doc.ok:
         return None
     kinds = {s.ident: s.kind for sites in candidates.values() for s in sites}
-    live: dict[int, tuple[int, bool]] = {}
+    seen: dict[int, tuple[int, bool]] = {}
+    names: dict[int, set[str]] = defaultdict(set)
     for el in doc.robot.iter():
         if not isinstance(el.tag, str) or el.get(MARK) is None:
             continue
         ident = int(el.get(MARK))
-        count, ok = live.get(ident, (0, True))
-        live[ident] = (count + 1, ok and applicable(el, kinds[ident], doc.robot))
-    return live
+        count, ok = seen.get(ident, (0, True))
+        seen[ident] = (count + 1, ok and applicable(el, kinds[ident], doc.robot))
+        name = instance_name(el)
+        if name is not None:
+            names[ident].add(name)
+    # instances.merge names the distinct instances, or counts them when fewer than two
+    return {
+        ident: (count, ok, len(names[ident]) if len(names[ident]) >= 2 else count)
+        for ident, (count, ok) in seen.items()
+    }
 
 
 @dataclass
@@ -440,6 +479,7 @@ class Outcome:
     instances: int
     verdict: str  # right, dup, elsewhere, missed, broken
     trace_ok: bool
+    count_ok: bool  # the finding names as many instances as the expansion wrote
     found: list[dict]  # the new findings
     seconds: float
 
@@ -451,6 +491,7 @@ def run_plant(
     site: Site,
     params: str,
     instances: int,
+    expected: int,
     baseline: list[tuple],
 ) -> Outcome:
     assert WORK is not None
@@ -487,13 +528,13 @@ def run_plant(
         new = [f for f in new if f.code == site.kind]
         here = [f for f in new if f.path == site.file and f.line == site.line]
         verdict = "right" if len(here) == 1 else "dup" if here else "elsewhere" if new else "missed"
-    trace_ok = False
+    trace_ok = count_ok = False
     if verdict in ("right", "dup"):
         outer = here[0].trace[-1].path if here[0].trace else None
         trace_ok = outer is not None and outer.split("/")[0] == entry.split("/")[0]
-    return Outcome(
-        report, entry, site, instances, verdict, trace_ok, found, time.perf_counter() - started
-    )
+        count_ok = sum(merged(f.message) for f in here) == expected
+    seconds = time.perf_counter() - started
+    return Outcome(report, entry, site, instances, verdict, trace_ok, count_ok, found, seconds)
 
 
 # -- entries and the report ----------------------------------------------------------------
@@ -510,7 +551,7 @@ def find_entries(workspace: Path) -> list[tuple[str, dict[str, str]]]:
                 if entry.endswith(".xacro") and (workspace / entry).is_file():
                     out.append((entry, {k: str(v) for k, v in item.get("args", {}).items()}))
             return out
-    found = []
+    found: list[tuple[str, dict[str, str]]] = []
     for path in sorted(workspace.rglob("*.xacro")):
         head = path.read_text(encoding="utf-8", errors="replace")
         if "<robot" not in head:
@@ -554,13 +595,13 @@ def main() -> int:
         tasks = []
         planted: set[tuple[str, str, str]] = set()
         for i, r in enumerate(reports):
-            for s, p, n in r.sites:
+            for s, p, n, expected in r.sites:
                 where = (s.file, s.macro, s.kind)
                 if where in planted and not opts.all_entries:
                     r.shared += 1
                     continue
                 planted.add(where)
-                tasks.append((i, r.entry, r.args, s, p, n, r.baseline))
+                tasks.append((i, r.entry, r.args, s, p, n, expected, r.baseline))
         outcomes: list[Outcome] = (
             list(pool.map(run_plant, *zip(*tasks, strict=False), chunksize=4)) if tasks else []
         )
@@ -572,13 +613,25 @@ def main() -> int:
         table[o.site.kind]["planted"] += 1
         table[o.site.kind]["multi"] += o.instances > 1
         table[o.site.kind]["trace_ok"] += o.trace_ok
+        table[o.site.kind]["count_ok"] += o.count_ok
     every = {c for r in reports for c in r.candidates}
     for _, _, kind in every - planted:
         table[kind]["n/a"] += 1
-    cols = ("planted", "right", "dup", "elsewhere", "missed", "broken", "trace_ok", "multi", "n/a")
+    cols = (
+        "planted",
+        "right",
+        "dup",
+        "elsewhere",
+        "missed",
+        "broken",
+        "trace_ok",
+        "count_ok",
+        "multi",
+        "n/a",
+    )
     print()
     print(f"{'defect':<26}" + "".join(f"{c:>10}" for c in cols))
-    total = Counter()
+    total: Counter[str] = Counter()
     for kind in KINDS:
         row = table[kind]
         total.update(row)
@@ -590,9 +643,10 @@ def main() -> int:
         f" = {share:.1f}%"
     )
     print(
-        "(dup: right file:line but more than once; trace_ok: outermost call in the entry's"
-        " package; multi: the macro line is expanded more than once;"
-        " n/a: macro/kind with no live site)"
+        "dup: at the right file:line but more than once; trace_ok: the outermost call is in the"
+        " entry's package;\ncount_ok: the finding names as many instances as the expansion"
+        " wrote; multi: the planted line is expanded more than once;\nn/a: macro and kind"
+        " without an element the expansion keeps where the rule applies (not planted)"
     )
 
     # per entry
@@ -614,7 +668,7 @@ def main() -> int:
             f"{right:>7}{r.shared:>8}{secs:>7.1f}"
         )
 
-    misses = [o for o in outcomes if o.verdict != "right" or not o.trace_ok]
+    misses = [o for o in outcomes if o.verdict != "right" or not o.trace_ok or not o.count_ok]
     if misses:
         print(
             f"\n{len(misses)} plants not reported exactly once at the right file:line"

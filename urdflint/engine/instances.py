@@ -16,6 +16,7 @@ from urdflint.model.finding import Finding
 
 NAME_STEP_RE = re.compile(r"([\w:]+)\[@(?:name|reference)=(?:'([^']*)'|\"([^\"]*)\")\]")
 QUOTED_NAME_RE = re.compile(r"'[^'/\s]*'")  # a quoted identifier (a name, not a file path)
+HINT_RE = re.compile(r" \(did you mean [^)]*\)")  # a did-you-mean some instances get
 MAX_NAMED = 6  # instances named in the message; the rest are counted
 
 
@@ -30,7 +31,7 @@ def _instance(finding: Finding) -> tuple[str, str] | None:
 
 def _shape(finding: Finding) -> str:
     """The message with quoted names masked: equal shapes differ only in names."""
-    return QUOTED_NAME_RE.sub("'…'", finding.message)
+    return QUOTED_NAME_RE.sub("'…'", HINT_RE.sub("", finding.message))
 
 
 def _plural(kind: str) -> str:
