@@ -20,12 +20,12 @@ from urdflint.cli.common import (
     model_options,
     run_context,
 )
-from urdflint.engine import config, options
+from urdflint.engine import config, instances, options
 from urdflint.engine.options import SettingsFinder
 from urdflint.model import targets
 from urdflint.model.finding import Finding
 from urdflint.outputs import formatters, report
-from urdflint.sources.discovery import SKIP_DIRS, collect
+from urdflint.sources.discovery import SKIP_DIRS, as_entries, collect
 
 FAIL_LEVEL = report.FAIL_LEVEL
 
@@ -152,7 +152,7 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(str(exc)) from None
     context = run_context(args)
     files, errors = collect(args.paths, context.workspace)
-    files = _changed_only(args, files)
+    files = as_entries(_changed_only(args, files), context.workspace)
     accepted = _load_baseline(args)
     if args.emit_expanded and not (len(files) == 1 and linter.is_xacro(files[0])):
         raise UsageError("--emit-expanded needs exactly one xacro file")
@@ -210,7 +210,9 @@ def _finish(
     args: argparse.Namespace, finder: SettingsFinder, outcome: Run, accepted: Any
 ) -> list[Finding]:
     """The findings to report: a note on skipped rules, then the baseline step."""
-    findings = outcome.findings
+    findings = (
+        instances.across_files(outcome.findings) if len(outcome.checked) > 1 else outcome.findings
+    )
     skipped, checked = outcome.skipped, outcome.checked
     gate = outcome.expects and bool({"P003", "P004"} & set(skipped))
     if skipped and checked and (gate or "U004" in finder.for_folder(Path.cwd()).enabled()):

@@ -67,3 +67,13 @@ def _merged(group: list[Finding]) -> Finding:
         more = f" and {len(names) - MAX_NAMED} more" if len(names) > MAX_NAMED else ""
         note = f" (for {kind}{shown}{more})"
     return replace(first, message=first.message + note, severity=max(f.severity for f in group))
+
+
+def across_files(findings: list[Finding]) -> list[Finding]:
+    """A run's findings with each defect once: entry files that include the same macro or
+    file report its defects once (exact repeats dropped, then instances merged)."""
+    first: dict[tuple[str, int, int, str, str], Finding] = {}
+    for f in findings:
+        first.setdefault((f.path, f.line, f.column, f.code, f.message), f)
+    unique = list(first.values())
+    return merge(unique) if len(unique) != len(findings) or any(f.trace for f in unique) else unique

@@ -159,3 +159,83 @@ def _has_content(element: etree._Element, includes: bool) -> bool:
         if local in ("link", "joint"):
             return True
     return False
+
+
+MAX_GRAPH_FILES = 5000  # xacro files scanned to find who includes a library
+
+
+def as_entries(files: Sequence[str], packages: Mapping[str, Path]) -> list[str]:
+    """``files`` with each xacro library or fragment replaced by the entry files that include
+    it (directly or through other libraries), found among the workspace's packages and the
+    file's own folder tree. A library nobody includes stays as given (it gets its X011 note),
+    and so does every robot file."""
+    out: list[str] = []
+    graph: _IncludeGraph | None = None
+    for name in files:
+        path = Path(name)
+        data = _read(path) if name != "-" and name.lower().endswith(".xacro") else None
+        if data is None or is_robot(data, name.lower().endswith(".urdf.xacro")):
+            out.append(name)
+            continue
+        graph = graph or _IncludeGraph(packages, [path.parent])
+        graph.add_tree(path.parent)
+        found = graph.entries_of(path)
+        if found:
+            out.extend(_shown(p) for p in found)
+        else:
+            out.append(name)
+    return list(dict.fromkeys(out))
+
+
+def _shown(path: Path) -> str:
+    try:
+        return os.path.relpath(path)
+    except ValueError:  # another drive
+        return str(path)
+
+
+class _IncludeGraph:
+    """Who includes whom among the xacro files of the workspace (bounded scan)."""
+
+    def __init__(self, packages: Mapping[str, Path], extra: Sequence[Path]) -> None:
+        self.packages = packages
+        self.files: dict[Path, list[str]] = {}
+        self.scanned: set[Path] = set()
+        for folder in [*packages.values(), *extra]:
+            self.add_tree(folder)
+
+    def add_tree(self, folder: Path) -> None:
+        folder = folder.resolve()
+        if folder in self.scanned:
+            return
+        self.scanned.add(folder)
+        for path in _below(folder)[1]:
+            if len(self.files) >= MAX_GRAPH_FILES:
+                return
+            full = path.resolve()
+            if full not in self.files:
+                data = _read(full)
+                self.files[full] = _include_patterns(full, data, self.packages) if data else []
+
+    def includers(self, target: Path) -> list[Path]:
+        full = os.path.normpath(str(target.resolve()))
+        return [
+            path
+            for path, patterns in self.files.items()
+            if path != target.resolve() and any(fnmatch.fnmatchcase(full, p) for p in patterns)
+        ]
+
+    def entries_of(self, target: Path) -> list[Path]:
+        """The files at the top of the include chains that reach ``target``."""
+        found: list[Path] = []
+        seen = {target.resolve()}
+        queue = [target.resolve()]
+        while queue:
+            current = queue.pop(0)
+            parents = [p for p in self.includers(current) if p not in seen]
+            if not parents and current != target.resolve():
+                found.append(current)
+            for parent in parents:
+                seen.add(parent)
+                queue.append(parent)
+        return sorted(found)

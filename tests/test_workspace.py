@@ -1,0 +1,234 @@
+"""Description packages as users have them: a workspace of packages, entry files and macro
+libraries, found without flags; findings inside macros with their call chain in every format."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import FIXTURES, ROOT
+from urdflint.sources import discovery, workspace
+
+pytest.importorskip("xacro")
+
+NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+PACKAGES = FIXTURES / "packages"
+
+
+def write(path: Path, text: str) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(textwrap.dedent(text).lstrip(), encoding="utf-8")
+    return path
+
+
+def package(folder: Path, name: str) -> Path:
+    write(folder / "package.xml", f"<package format='3'><name>{name}</name></package>\n")
+    return folder
+
+
+FINGER = f"""
+<robot {NS}>
+  <xacro:macro name="finger" params="prefix parent mass">
+    <link name="${{prefix}}finger">
+      <inertial>
+        <mass value="${{mass}}"/>
+        <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>
+      </inertial>
+    </link>
+    <joint name="${{prefix}}joint" type="revolute">
+      <origin xyz="0 0 0.1"/>
+      <parent link="${{parent}}"/>
+      <child link="${{prefix}}finger"/>
+      <axis xyz="0 0 0"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+
+GRIPPER = f"""
+<robot {NS}>
+  <xacro:include filename="$(find finger_description)/urdf/finger.xacro"/>
+  <xacro:macro name="gripper" params="parent">
+    <xacro:finger prefix="left_" parent="${{parent}}" mass="0.1"/>
+    <xacro:finger prefix="right_" parent="${{parent}}" mass="0.1"/>
+  </xacro:macro>
+</robot>
+"""
+
+ROBOT = f"""
+<robot name="bot" {NS}>
+  <xacro:include filename="$(find gripper_description)/urdf/gripper.xacro"/>
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+  </link>
+  <xacro:gripper parent="base"/>
+</robot>
+"""
+
+
+@pytest.fixture
+def ws(tmp_path: Path) -> Path:
+    """src/ with three packages: a finger macro, a gripper macro using it twice, a robot."""
+    src = tmp_path / "src"
+    write(package(src / "finger_description", "finger_description") / "urdf/finger.xacro", FINGER)
+    write(
+        package(src / "gripper_description", "gripper_description") / "urdf/gripper.xacro", GRIPPER
+    )
+    bot = package(src / "bot_description", "bot_description")
+    write(bot / "urdf/bot.urdf.xacro", ROBOT)
+    write(bot / "urdf/bot_alias.urdf.xacro", ROBOT.replace('name="bot"', 'name="bot2"'))
+    write(bot / "urdf/materials.urdf.xacro", f'<robot {NS}><material name="red"/></robot>\n')
+    return src
+
+
+def run_cli(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    env = {"PATH": os.environ.get("PATH", "/usr/bin:/bin"), "PYTHONPATH": str(ROOT)}
+    return subprocess.run(
+        [sys.executable, "-m", "urdflint", "check", "--isolated", *args],
+        capture_output=True, text=True, cwd=cwd, env=env, check=False,
+    )  # fmt: skip
+
+
+def line_of(path: Path, needle: str) -> int:
+    text = path.read_text(encoding="utf-8")
+    return text[: text.index(needle)].count("\n") + 1
+
+
+# -- discovery ------------------------------------------------------------------------------
+
+
+def test_packages_are_found_below_the_paths_without_flags(ws: Path) -> None:
+    (ws / "ignored").mkdir()
+    package(ws / "ignored" / "old_copy", "finger_description")
+    (ws / "ignored" / "COLCON_IGNORE").write_text("")
+    found = workspace.discover([ws / "bot_description" / "urdf" / "bot.urdf.xacro"])
+    assert found == {
+        "bot_description": ws / "bot_description",
+        "finger_description": ws / "finger_description",
+        "gripper_description": ws / "gripper_description",
+    }
+
+
+def test_a_folder_yields_entry_files_not_libraries(ws: Path) -> None:
+    files, errors = discovery.collect([str(ws)], workspace.discover([ws]))
+    assert errors == []
+    assert [Path(f).relative_to(ws).as_posix() for f in files] == [
+        "bot_description/urdf/bot.urdf.xacro",
+        "bot_description/urdf/bot_alias.urdf.xacro",
+    ]
+
+
+def test_entries_match_a_hand_made_list_on_real_packages() -> None:
+    wanted = {e["entry"] for e in json.loads((PACKAGES / "entries.json").read_text())}
+    files, _ = discovery.collect([str(PACKAGES)], workspace.discover([PACKAGES]))
+    found = {Path(f).relative_to(PACKAGES).as_posix() for f in files if f.endswith(".xacro")}
+    assert wanted == found  # 18 entries written down by hand, no library among the found
+
+
+def test_a_library_given_alone_is_checked_through_its_entries(ws: Path) -> None:
+    packages = workspace.discover([ws])
+    finger = ws / "finger_description" / "urdf" / "finger.xacro"
+    found = discovery.as_entries([str(finger)], packages)
+    assert sorted(Path(f).resolve() for f in found) == [
+        (ws / "bot_description/urdf/bot.urdf.xacro").resolve(),
+        (ws / "bot_description/urdf/bot_alias.urdf.xacro").resolve(),
+    ]
+    lonely = write(ws / "lonely.xacro", f'<robot {NS}><xacro:macro name="m"/></robot>\n')
+    assert discovery.as_entries([str(lonely)], packages) == [str(lonely)]
+
+
+# -- one defect, one finding, with its call chain ----------------------------------------------
+
+
+def test_workspace_run_reports_each_macro_defect_once_with_its_chain(ws: Path) -> None:
+    proc = run_cli("--select", "J007", "--format", "json", "src", cwd=ws.parent)
+    assert proc.returncode == 1, proc.stderr
+    [finding] = json.loads(proc.stdout)["findings"]
+    finger = ws / "finger_description" / "urdf" / "finger.xacro"
+    gripper = ws / "gripper_description" / "urdf" / "gripper.xacro"
+    bot = ws / "bot_description" / "urdf" / "bot.urdf.xacro"
+    assert (finding["path"], finding["line"]) == (
+        "src/finger_description/urdf/finger.xacro",
+        line_of(finger, '<axis xyz="0 0 0"/>'),
+    )
+    assert finding["message"].endswith("(for joints left_joint, right_joint)")
+    assert finding["trace"] == [
+        {"macro": "finger", "path": "src/gripper_description/urdf/gripper.xacro",
+         "line": line_of(gripper, 'prefix="left_"'), "column": 5},
+        {"macro": "gripper", "path": "src/bot_description/urdf/bot.urdf.xacro",
+         "line": line_of(bot, "<xacro:gripper"), "column": 3},
+    ]  # fmt: skip
+
+
+def test_instances_with_different_values_stay_apart(ws: Path) -> None:
+    gripper = ws / "gripper_description" / "urdf" / "gripper.xacro"
+    right = 'prefix="right_" parent="${parent}" mass='
+    gripper.write_text(gripper.read_text().replace(right + '"0.1"', right + '"-2"'))
+    bot = ws / "bot_description" / "urdf" / "bot.urdf.xacro"
+    proc = run_cli("--select", "I002", "--format", "json", str(bot), cwd=ws.parent)
+    [finding] = json.loads(proc.stdout)["findings"]
+    assert "right_finger" in finding["message"] and "left_finger" not in finding["message"]
+    assert finding["trace"][0]["line"] == line_of(gripper, 'prefix="right_"')
+
+
+def test_text_github_and_sarif_carry_the_chain(ws: Path) -> None:
+    bot = "src/bot_description/urdf/bot.urdf.xacro"
+    text = run_cli("--select", "J007", bot, cwd=ws.parent).stdout.splitlines()
+    assert text[0].startswith("src/finger_description/urdf/finger.xacro:")
+    assert text[1].startswith("    in macro `finger`, called from src/gripper_description/")
+    assert text[2].startswith("    in macro `gripper`, called from src/bot_description/")
+    github = run_cli("--select", "J007", "--format", "github", bot, cwd=ws.parent).stdout
+    assert "file=src/finger_description/urdf/finger.xacro" in github
+    assert "%0Ain macro `finger`, called from src/gripper_description/urdf/gripper.xacro" in github
+    sarif = json.loads(run_cli("--select", "J007", "--format", "sarif", bot, cwd=ws.parent).stdout)
+    [result] = sarif["runs"][0]["results"]
+    uris = [r["physicalLocation"]["artifactLocation"]["uri"] for r in result["relatedLocations"]]
+    assert uris[0].endswith("bot_description/urdf/bot.urdf.xacro")  # outermost call first
+    assert uris[1].endswith("gripper_description/urdf/gripper.xacro")
+    steps = result["codeFlows"][0]["threadFlows"][0]["locations"]
+    assert len(steps) == 3 and steps[-1]["location"]["message"]["text"] == result["message"]["text"]
+
+
+# -- arguments ------------------------------------------------------------------------------
+
+
+def test_a_missing_argument_is_one_finding_that_says_how_to_pass_it(ws: Path) -> None:
+    bot = ws / "bot_description" / "urdf" / "bot.urdf.xacro"
+    bot.write_text(bot.read_text().replace('name="bot"', 'name="$(arg robot_name)"'))
+    proc = run_cli("--select", "X010", str(bot), cwd=ws.parent)
+    assert proc.returncode == 1
+    assert "xacro argument 'robot_name' has no value" in proc.stdout
+    assert "--xacro-arg robot_name:=VALUE" in proc.stdout
+    config = ws.parent / "urdflint.toml"
+    config.write_text(
+        '[per-file-xacro-args]\n"src/bot_description/urdf/bot*.xacro" = { robot_name = "b" }\n'
+    )
+    proc = subprocess.run(
+        [sys.executable, "-m", "urdflint", "check", "--select", "X010", str(bot)],
+        capture_output=True, text=True, cwd=ws.parent, check=False,
+        env={"PATH": os.environ.get("PATH", ""), "PYTHONPATH": str(ROOT)},
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_per_file_arguments_apply_by_glob_and_the_command_line_wins(tmp_path: Path) -> None:
+    from urdflint.engine import config
+
+    settings = config.from_mapping(
+        {"xacro-args": {"a": "1", "b": "1"}, "per-file-xacro-args": {"arms/*.xacro": {"b": 2}}},
+        tmp_path / "urdflint.toml",
+    )
+    assert settings.xacro_args_for(str(tmp_path / "arms" / "x.xacro")) == {"a": "1", "b": "2"}
+    assert settings.xacro_args_for(str(tmp_path / "legs" / "x.xacro")) == {"a": "1", "b": "1"}
+    with pytest.raises(config.ConfigError, match="per-file-xacro-args"):
+        config.from_mapping({"per-file-xacro-args": {"*.xacro": "a:=1"}})
