@@ -379,6 +379,9 @@ def set_attr(tag: str, name: str, value: str) -> str:
     return f'{tag[:cut].rstrip()} {name}="{value}"{tag[cut:]}'
 
 
+POINTED_AT = {"I002": "value", "J007": "xyz", "J009": "lower"}
+
+
 def plant(workspace: Path, p: Plant) -> int:
     """Plant ``p`` in the workspace copy; the 1-based line of the planted element."""
     path = workspace / p.file
@@ -411,6 +414,9 @@ def plant(workspace: Path, p: Plant) -> int:
                 path.write_text(text[:at] + element + rest, encoding="utf-8")
                 return text.count("\n", 0, at) + 1
         new = text[:at] + element + text[close:]
+        attribute = POINTED_AT.get(p.code)  # the finding points at the attribute at fault
+        if attribute is not None:
+            at += re.search(rf"\s{attribute}\s*=", element).start() + 1  # type: ignore[union-attr]
     assert new.count("\n") == text.count("\n")  # every line stays where it was
     path.write_text(new, encoding="utf-8")
     return text.count("\n", 0, at) + 1

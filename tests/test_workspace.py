@@ -232,3 +232,43 @@ def test_per_file_arguments_apply_by_glob_and_the_command_line_wins(tmp_path: Pa
     assert settings.xacro_args_for(str(tmp_path / "legs" / "x.xacro")) == {"a": "1", "b": "1"}
     with pytest.raises(config.ConfigError, match="per-file-xacro-args"):
         config.from_mapping({"per-file-xacro-args": {"*.xacro": "a:=1"}})
+
+
+# -- positions: the start of the tag, the attribute at fault ------------------------------------
+
+
+def test_findings_point_at_the_tag_start_and_the_attribute(tmp_path: Path) -> None:
+    from urdflint.engine import config, linter
+    from urdflint.engine.context import Context
+
+    robot = write(
+        tmp_path / "r.urdf",
+        """
+        <robot name="r">
+          <link name="a">
+            <inertial>
+              <mass
+                  value="-1"/>
+              <inertia ixx="1" iyy="1" izz="1"
+                       ixy="0" ixz="0" iyz="0"/>
+            </inertial>
+          </link>
+        </robot>
+        """,
+    )
+    settings = config.Settings(select=("I002", "X005"))
+    [mass] = linter.lint_path(robot, "r.urdf", settings, Context(environ={})).findings
+    assert (mass.line, mass.column) == (5, 11)  # value="-1", not the <mass on line 4
+    robot.write_text(robot.read_text().replace('value="-1"/>', 'value="1"/>\n<origin xyz="0 0"/>'))
+    [arity] = linter.lint_path(robot, "r.urdf", settings, Context(environ={})).findings
+    assert (arity.code, arity.line, arity.column) == ("X005", 6, 9)
+
+
+def test_an_attribute_in_a_macro_is_located_in_the_macro(ws: Path) -> None:
+    finger = ws / "finger_description" / "urdf" / "finger.xacro"
+    finger.write_text(finger.read_text().replace('<limit lower="-1"', '<limit\n        lower="2"'))
+    bot = ws / "bot_description" / "urdf" / "bot.urdf.xacro"
+    proc = run_cli("--select", "J009", "--format", "json", str(bot), cwd=ws.parent)
+    [finding] = json.loads(proc.stdout)["findings"]
+    assert (finding["line"], finding["column"]) == (line_of(finger, 'lower="2"'), 9)
+    assert len(finding["trace"]) == 2

@@ -118,7 +118,7 @@ def test_defects_point_into_the_file_and_line_that_wrote_them(rrbot: Path) -> No
     mass = found["I002"]
     assert mass.path == "robot/urdf/rrbot.xacro"
     assert mass.line == line_of(main, '<mass value="-1"/>')
-    assert mass.column == 7 and "expanded document" not in mass.message
+    assert mass.column == 13 and "expanded document" not in mass.message  # at value="-1"
     assert mass.element == "/robot/link[@name='link2']/inertial/mass"
 
     reference = found["G001"]

@@ -49,4 +49,4 @@ def check(doc: Document) -> Iterator[Hit]:
             continue
         why = malformed(value, kind)
         if why is not None:
-            yield Hit(el, f"<{el.tag}> {attr} {value!r} of {owner(el)} {why}")
+            yield Hit(el, f"<{el.tag}> {attr} {value!r} of {owner(el)} {why}", attribute=attr)

@@ -51,4 +51,5 @@ def check(doc: Document) -> Iterator[Hit]:
         yield Hit(
             el,
             f"<{el.tag}> {attr} {value!r} of {owner(el)} has {count} {numbers}, not {kind.arity}",
+            attribute=attr,
         )

@@ -39,7 +39,8 @@ def check(doc: Document) -> Iterator[Hit]:
         if inertial is None or inertial.mass is None or inertial.mass > 0:
             continue
         if inertial.mass < 0:
-            yield Hit(inertial.mass_element, f"link '{name}' has mass {fmt(inertial.mass)} kg")
+            message = f"link '{name}' has mass {fmt(inertial.mass)} kg"
+            yield Hit(inertial.mass_element, message, attribute="value")
             continue
         verdict = massless_verdict(doc, name)
         if verdict is not None:
@@ -47,4 +48,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 inertial.mass_element,
                 f"link '{name}' has mass 0 kg, so {verdict.consequence}",
                 severity=verdict.severity,
+                attribute="value",
             )

@@ -51,4 +51,4 @@ def check(doc: Document) -> Iterator[Hit]:
             message = f"{J.label(joint)} has an <axis> without xyz, which urdfdom reads as 0 0 0"
         else:
             message = f"{J.label(joint)} has the zero axis {J.fmt_vector(vec)}"
-        yield Hit(el, message)
+        yield Hit(el, message, attribute="xyz")

@@ -61,6 +61,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 lim.element,
                 f"{J.label(joint)} has lower {fmt(lim.lower)} {unit} above upper "
                 f"{fmt(lim.upper)} {unit}",
+                attribute="lower",
             )
         elif lim.lower == lim.upper:
             yield Hit(

@@ -177,19 +177,14 @@ def _unused(
 def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     """Turn a rule's hit into a finding: path, line, column, element, code, severity."""
     element = hit.element
-    line = (
-        hit.line
-        or (element.sourceline if element is not None else None)
-        or (doc.root.sourceline if doc.root is not None else 1)
-    )
-    column = hit.column or (doc.column_of(element, line) if element is not None else 1)
+    line, column = _position(doc, hit)
     configured = settings.severity.get(rule.code)
     severity = configured or hit.severity or rule.severity
     shown, message = hit.path or doc.path, hit.message
     trace: tuple[Call, ...] = ()
     anchor = element if element is not None else doc.root  # robot-level: the <robot> tag
     if doc.origin is not None and anchor is not None and not hit.line:
-        origin = doc.origin(anchor)
+        origin = doc.origin(anchor, hit.attribute if anchor is element else None)
         if origin is not None:
             shown, line, column, trace = origin.path, origin.line, origin.column, origin.trace
             if not origin.exact:
@@ -211,6 +206,23 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
         fix=hit.fix or rule.fix,
         trace=trace,
     )
+
+
+def _position(doc: Document, hit: Hit) -> tuple[int, int]:
+    """Where the hit is in the document's own text: the given line, the attribute the rule
+    points at, or the start of the element's tag (libxml2 gives the line it ends on)."""
+    element = hit.element
+    if hit.line:
+        return hit.line, hit.column or 1
+    if element is None or isinstance(element, etree._Comment) or not element.sourceline:
+        if element is None and doc.root is not None:
+            return doc.start_of(doc.root)
+        return (element.sourceline or 1) if element is not None else 1, 1
+    if hit.attribute:
+        found = doc.attribute_at(element, hit.attribute)
+        if found is not None:
+            return found
+    return doc.start_of(element)
 
 
 def _comment_path(doc: Document, comment: etree._Element) -> str:

@@ -53,6 +53,7 @@ class Hit:
     line: int | None = None
     column: int | None = None
     path: str | None = None  # with ``line``: a position in another file (a xacro include)
+    attribute: str | None = None  # the attribute at fault: the finding points at it
 
 
 Check = Callable[..., Iterator[Hit]]

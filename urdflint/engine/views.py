@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from urdflint.model.document import Document, provide
+from urdflint.model.document import Document
+from urdflint.model.providers import provide
 
 
 @provide("settings")

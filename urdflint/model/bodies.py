@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING
 from weakref import WeakKeyDictionary
 
 from urdflint.model import optional
-from urdflint.model.document import provided
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import preserved_joints
 from urdflint.model.geometry import Shape, shapes
@@ -34,6 +33,7 @@ from urdflint.model.inertia import (
     rpy_matrix,
     transform_box,
 )
+from urdflint.model.providers import provided
 from urdflint.model.targets import gazebo_label
 from urdflint.model.values import vector
 

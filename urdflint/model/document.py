@@ -8,46 +8,22 @@ entity references is refused (X002), never expanded.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from lxml import etree
 
 from urdflint.model.finding import Call
 from urdflint.model.graph import Graph
+from urdflint.model.positions import Lines, attribute_offset, tag_start
+from urdflint.model.providers import provided
 
 if TYPE_CHECKING:  # provided by the engine at run time, see provide()
     from urdflint.engine.config import Settings
     from urdflint.engine.context import Context
     from urdflint.sources.resolve import Resolver
-
-# Views a higher layer computes for a document: "settings" and "context" (defaults when
-# the caller gave none) and "physics" (the Pinocchio view). The engine registers them
-# (urdflint.engine.views), so this module never imports above the model.
-PROVIDERS: dict[str, Callable[[Document], Any]] = {}
-
-
-def provide(name: str) -> Callable[[Callable[[Document], Any]], Callable[[Document], Any]]:
-    """Register the function that computes the view ``name`` of a document."""
-
-    def register(function: Callable[[Document], Any]) -> Callable[[Document], Any]:
-        PROVIDERS[name] = function
-        return function
-
-    return register
-
-
-def provided(name: str, doc: Document) -> Any:
-    try:
-        function = PROVIDERS[name]
-    except KeyError:
-        raise RuntimeError(
-            f"no provider for the document view {name!r}: import urdflint.engine.views"
-        ) from None
-    return function(doc)
 
 
 @dataclass(frozen=True, slots=True)
@@ -66,6 +42,12 @@ class Origin:
 
 MAX_BYTES = 64 * 2**20
 XACRO_NS = "http://www.ros.org/wiki/xacro"
+
+
+class Origins(Protocol):
+    """Where the elements of an expanded document are written (the xacro source map)."""
+
+    def __call__(self, el: etree._Element, attribute: str | None = None) -> Origin | None: ...
 
 
 @dataclass(frozen=True, slots=True)
@@ -169,7 +151,7 @@ class Document:
         settings: Settings | None = None,
         context: Context | None = None,
         base_dir: Path | None = None,
-        origin: Callable[[etree._Element], Origin | None] | None = None,
+        origin: Origins | None = None,
         problem: XmlProblem | None = None,
         library: bool = False,
     ) -> None:
@@ -362,6 +344,30 @@ class Document:
             return tag
         same = [c for c in parent if c.tag == node.tag]
         return f"{tag}[{same.index(node) + 1}]" if len(same) > 1 else tag
+
+    @cached_property
+    def _positions(self) -> Lines:
+        return Lines(self.source)
+
+    def _tag_offset(self, el: etree._Element) -> int | None:
+        tag = local_tag(el)
+        if not el.sourceline or not tag or "/" in tag:
+            return None
+        return tag_start(self._positions, tag, el.sourceline)
+
+    def start_of(self, el: etree._Element) -> tuple[int, int]:
+        """1-based line and column of the element's ``<tag``."""
+        offset = self._tag_offset(el)
+        if offset is None:
+            line = el.sourceline or 1
+            return line, self.column_of(el, line)
+        return self._positions.position(offset)
+
+    def attribute_at(self, el: etree._Element, name: str) -> tuple[int, int] | None:
+        """1-based line and column of ``name=`` in the element's start tag, if written there."""
+        offset = self._tag_offset(el)
+        found = attribute_offset(self.source, offset, name) if offset is not None else None
+        return self._positions.position(found) if found is not None else None
 
     def column_of(self, el: etree._Element, line: int) -> int:
         """1-based column of ``<tag`` on the element's start line (1 when not found)."""

@@ -28,6 +28,7 @@ from lxml import etree
 
 from urdflint.model.document import Origin
 from urdflint.model.finding import Call
+from urdflint.model.positions import attribute_offset
 
 MARK = "_urdflint_mark"  # the attribute set on minidom nodes: (source, byte offset, chain)
 
@@ -192,10 +193,14 @@ class SourceMap:
             self._marks = self._build(el.getroottree().getroot()) if self.dom is not None else {}
         return self._marks.get(el)
 
-    def __call__(self, el: etree._Element) -> Origin | None:
+    def __call__(self, el: etree._Element, attribute: str | None = None) -> Origin | None:
         mark = self.mark(el)
         if mark is None:
             return self._expanded(el)
+        if attribute is not None:
+            found = self._attribute(mark, attribute)
+            if found is not None:
+                return found
         found = self._origins.get(mark)
         if found is None:
             file = self.files[mark[0]]
@@ -203,6 +208,16 @@ class SourceMap:
             chain = tuple(self._call(link) for link in mark[2])
             found = self._origins[mark] = Origin(file.shown, line, column, True, chain)
         return found
+
+    def _attribute(self, mark: Mark, name: str) -> Origin | None:
+        """Where ``name=`` is written in the start tag (for ``xacro:attribute``, nowhere)."""
+        file = self.files[mark[0]]
+        offset = attribute_offset(file.data, mark[1], name)
+        if offset is None:
+            return None
+        line, column = file.position(offset)
+        chain = tuple(self._call(link) for link in mark[2])
+        return Origin(file.shown, line, column, True, chain)
 
     def _expanded(self, el: etree._Element) -> Origin | None:
         """The element's line in the expanded document, marked not exact."""
