@@ -272,3 +272,21 @@ def test_an_attribute_in_a_macro_is_located_in_the_macro(ws: Path) -> None:
     [finding] = json.loads(proc.stdout)["findings"]
     assert (finding["line"], finding["column"]) == (line_of(finger, 'lower="2"'), 9)
     assert len(finding["trace"]) == 2
+
+
+def test_a_suppression_inside_a_macro_works_and_an_unused_one_is_shown_there(ws: Path) -> None:
+    finger = ws / "finger_description" / "urdf" / "finger.xacro"
+    text = finger.read_text()
+    text = text.replace(
+        '      <axis xyz="0 0 0"/>',
+        '      <!-- urdflint: ignore[J007] a test axis -->\n      <axis xyz="0 0 0"/>',
+    )
+    text = text.replace(
+        "      <inertial>", "      <!-- urdflint: ignore[I002] -->\n      <inertial>"
+    )
+    finger.write_text(text)  # fmt: skip
+    bot = ws / "bot_description" / "urdf" / "bot.urdf.xacro"
+    proc = run_cli("--select", "J007,I002,U002", "--format", "json", str(bot), cwd=ws.parent)
+    [unused] = json.loads(proc.stdout)["findings"]
+    assert unused["code"] == "U002"
+    assert (unused["path"], unused["line"]) == (str(finger), line_of(finger, "ignore[I002]"))

@@ -169,7 +169,7 @@ def _unused(
             hit = Hit(
                 directive.comment,
                 f"suppression of {', '.join(unused)} on this {what} matched no finding",
-                line=directive.line,
+                line=None if doc.origin is not None else directive.line,
             )
             yield stamp(doc, rule, hit, settings)
 
