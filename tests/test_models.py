@@ -33,8 +33,8 @@ def test_broken_arm_reports_every_defect_in_one_run() -> None:
         (37, "J007"),  # zero axis
         (44, "I002"),  # mass -1
         (45, "I005"),  # 0.01 + 0.01 < 0.03
-        (61, "J009"),  # lower 1.2 > upper -1.2
-        (61, "J010"),  # effort -20
+        (61, "J010"),  # effort -20 (on <limit>, column 5)
+        (61, "J009"),  # lower 1.2 > upper -1.2 (on lower=, column 12)
         (62, "J002"),  # <calibration> ignored
         (66, "I001"),  # moving link without <inertial>
         (70, "C003"),  # radius -0.025

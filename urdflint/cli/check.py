@@ -67,6 +67,12 @@ def add_parser(sub: Any) -> None:
     )
     check.add_argument("--exit-zero", action="store_true", help="same as --fail-on never")
     check.add_argument(
+        "--show-info",
+        action="store_true",
+        help="list info findings in the text output (default: one summary line; "
+        "--fail-on info and the machine formats always list them)",
+    )
+    check.add_argument(
         "--target",
         action="append",
         choices=tuple(targets.TARGETS),
@@ -165,8 +171,9 @@ def run(args: argparse.Namespace) -> int:
     fmt = args.format
     if fmt == "auto":
         fmt = "github" if os.environ.get("GITHUB_ACTIONS") == "true" else "text"
+    show_info = args.show_info or outcome.fail_on == "info"
     info = formatters.RunInfo(
-        __version__, tuple(outcome.checked), outcome.models, outcome.fail_on, outcome.ran
+        __version__, tuple(outcome.checked), outcome.models, outcome.fail_on, outcome.ran, show_info
     )
     _write_outputs([(fmt, args.output), *reports], findings, info)
     return _exit_code(args, files, outcome, findings)

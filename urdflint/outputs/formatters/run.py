@@ -18,6 +18,7 @@ class RunInfo:
     models: dict[str, Any] = field(default_factory=dict)
     fail_on: str = "error"  # lowest failing severity, or "never" (JUnit failures)
     rules: dict[str, tuple[str, ...]] = field(default_factory=dict)  # path -> rule codes run
+    show_info: bool = True  # text: list infos one by one (else one summary line)
 
     def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
         counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}

@@ -1,18 +1,41 @@
 """``path:line:col: severity CODE name: message`` (editors make it clickable), then one
-indented ``in macro `m`, called from path:line:col`` line per macro call for xacro input."""
+indented ``in macro `m`, called from path:line:col`` line per macro call for xacro input.
+
+Unless the run shows infos (``--show-info``, ``--fail-on info``), infos are summarised in
+one line per run, most frequent rule first; machine formats always carry every finding.
+"""
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Sequence
 
-from urdflint.model.finding import Finding
+from urdflint.model.finding import Finding, Severity
 from urdflint.outputs.formatters.run import RunInfo, summary_line
+
+MAX_CODES = 6  # rules named in the info summary line
 
 
 def render(findings: Sequence[Finding], run: RunInfo) -> str:
     lines: list[str] = []
+    hidden: list[Finding] = []
     for f in findings:
+        if f.severity is Severity.INFO and not run.show_info:
+            hidden.append(f)
+            continue
         lines.append(f"{f.path}:{f.line}:{f.column}: {f.severity} {f.code} {f.name}: {f.message}")
         lines.extend(f"    {call}" for call in f.trace)  # xacro: the macro calls, innermost first
+    if hidden:
+        lines.append(info_summary(hidden))
     lines.append(summary_line(findings, run))
     return "\n".join(lines) + "\n"
+
+
+def info_summary(infos: Sequence[Finding]) -> str:
+    """``3 infos not shown: J011 ×2, C001 ×1 (--show-info lists them)``."""
+    counts = Counter(f.code for f in infos).most_common()
+    shown = ", ".join(f"{code} ×{count}" for code, count in counts[:MAX_CODES])
+    if len(counts) > MAX_CODES:
+        shown += f", {len(counts) - MAX_CODES} more rules"
+    noun = "info" if len(infos) == 1 else "infos"
+    return f"{len(infos)} {noun} not shown: {shown} (--show-info lists them)"
