@@ -3,7 +3,7 @@
     uvicorn urdflint.server.app:app --host 0.0.0.0 --port 8000
     urdflint serve --host 0.0.0.0 --port 8000 --workers 1
 
-Endpoints (OpenAPI at ``/docs`` and ``/openapi.json``):
+Endpoints (OpenAPI at ``/openapi.json``, shown by ``/docs``, which works offline):
 
 ``POST /v1/check``      lint one URDF or xacro file: a raw ``application/xml``/``text/xml``
                         body, or ``multipart/form-data`` with ``urdf`` (a .urdf/.xacro file,
@@ -13,17 +13,28 @@ Endpoints (OpenAPI at ``/docs`` and ``/openapi.json``):
                         ran, even on a broken model
 ``GET /v1/rules``       the rule catalogue (as ``urdflint rules --format json``)
 ``GET /v1/rules/{code}`` one rule, with its page as Markdown (as ``urdflint explain``)
-``GET /healthz``        liveness: answers without touching anything else
+``GET /healthz``        liveness: 200 while the process serves requests, touching nothing
+                        else (not even the workers: a restart would not fix a busy server)
 ``GET /readyz``         readiness: a worker builds a tiny model with Pinocchio and loads a
-                        tiny mesh; reports the optional capabilities and the limits
+                        tiny mesh; reports the optional capabilities and the limits. 503
+                        with ``{"ready": false, "reason": ...}`` while the workers start,
+                        when every one is busy, or when they cannot start (the reason
+                        names the cause, e.g. the worker's import error)
 ``GET /version``        versions of urdflint and the libraries it uses
-``GET /``, ``/static``  the web page (``server/static``), when present
+``GET /``, ``/rules``, ``/rules/{code}``, ``/docs``, ``/static``
+                        the web pages (``page.py``, ``server/static``), when present
 
 Status codes: 200 linting ran; 404 unknown rule; 413 body or upload over its limit; 415
 not XML, multipart, or a .urdf/.xacro file; 422 malformed request, option or archive,
-with the reason in ``detail``; 503 every worker and queue place taken, or the server is
-starting (``Retry-After``); 504 the job overran ``URDFLINT_TIMEOUT`` (its worker is
-killed and replaced). Never 500 for bad input.
+with the reason in ``detail``; 503 every worker and queue place taken, the server is
+starting (``Retry-After``), or no lint worker can start (see ``/readyz``); 504 the job
+overran ``URDFLINT_TIMEOUT`` (its worker is killed and replaced). Never 500 for bad input.
+
+Start-up: the app answers at once and starts the lint workers in the background, retrying
+a few times (``pool.Pool.keep_starting``). When no worker can ever start (a broken install,
+say), the server logs why and exits with :data:`EXIT_NO_WORKERS` after a graceful
+shutdown, so an orchestrator restarts it or shows the failure (``create_app`` with
+``exit_on_failure=False``, as in-process tests use it, only reports it on ``/readyz``).
 
 Limits come from the environment (see ``limits.py``: ``URDFLINT_MAX_URDF_BYTES``,
 ``URDFLINT_MAX_ZIP_BYTES``, ``URDFLINT_TIMEOUT``, ``URDFLINT_JOBS``, ``URDFLINT_QUEUE``
@@ -40,6 +51,10 @@ limits middleware (``limits.Guard``) and one worker pool, kept in ``app.state``.
 from __future__ import annotations
 
 import asyncio
+import logging
+import os
+import signal
+import sys
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager, suppress
 
@@ -55,6 +70,8 @@ from .page import SecurityHeaders
 from .pool import Pool
 from .routing import option_error
 
+log = logging.getLogger("urdflint.server")
+EXIT_NO_WORKERS = 3  # the exit code when no lint worker can start (as uvicorn's start-up failure)
 DESCRIPTION = """Lint robot descriptions (URDF and xacro) with every urdflint rule.
 
 `POST /v1/check` returns exactly the JSON document `urdflint check --format json` prints,
@@ -64,8 +81,12 @@ plus `passed`. Send the URDF as the raw body (`Content-Type: application/xml`) o
 """
 
 
-def create_app(limits: Limits | None = None) -> FastAPI:
-    """A new app with its own worker pool (started with the app's lifespan, or lazily)."""
+def create_app(limits: Limits | None = None, *, exit_on_failure: bool = False) -> FastAPI:
+    """A new app with its own worker pool (started with the app's lifespan, or lazily).
+
+    With ``exit_on_failure``, the process stops (exit code :data:`EXIT_NO_WORKERS`) when no
+    lint worker can start; the module's ``app``, which servers run, is made so.
+    """
     limits = limits or Limits.from_env()
     pool = Pool(
         size=limits.jobs,
@@ -73,17 +94,21 @@ def create_app(limits: Limits | None = None) -> FastAPI:
         memory=limits.worker_memory,
         max_tasks=limits.max_tasks,
     )
+    if exit_on_failure:
+        pool.on_failed = _stop_server
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         registry.load_rules()
-        starting = asyncio.create_task(pool.start())
+        starting = asyncio.create_task(pool.keep_starting())
         starting.add_done_callback(_report_start)
         try:
             yield
         finally:
             starting.cancel()
             await pool.close()
+            if exit_on_failure and pool.failed is not None:
+                _exit(pool.failed)
 
     app = FastAPI(
         title="urdflint",
@@ -91,6 +116,8 @@ def create_app(limits: Limits | None = None) -> FastAPI:
         description=DESCRIPTION,
         version=__version__,
         lifespan=lifespan,
+        docs_url=None,  # page.py serves /docs from the copy of Swagger UI in static/
+        redoc_url=None,  # ReDoc would come from a CDN: not offline, so not served
     )
     app.state.limits = limits
     app.state.pool = pool
@@ -106,10 +133,30 @@ def create_app(limits: Limits | None = None) -> FastAPI:
     return app
 
 
-def _report_start(task: asyncio.Task[None]) -> None:
+def _report_start(task: asyncio.Task[bool]) -> None:
     """Retrieve a failed start's exception, so asyncio does not log it a second time."""
     with suppress(asyncio.CancelledError):
-        task.exception()  # retrieved (the pool logged it): a later request retries the start
+        task.exception()  # retrieved (the pool logged it)
 
 
-app = create_app()
+def _stop_server(reason: str) -> None:
+    """No lint worker can start: shut the server down gracefully (SIGTERM to itself)."""
+    log.critical("stopping the server: %s", reason)
+    os.kill(os.getpid(), signal.SIGTERM)
+
+
+def _exit(reason: str) -> None:
+    """End the process with :data:`EXIT_NO_WORKERS`, once the server has shut down.
+
+    ``os._exit``: uvicorn would end with 0 after a SIGTERM, which an orchestrator takes
+    for a clean stop; the shutdown (connections, the pool) is already done here.
+    """
+    log.critical("exiting with code %d: %s", EXIT_NO_WORKERS, reason)
+    logging.shutdown()
+    for stream in (sys.stdout, sys.stderr):
+        with suppress(Exception):
+            stream.flush()
+    os._exit(EXIT_NO_WORKERS)
+
+
+app = create_app(exit_on_failure=True)

@@ -1,10 +1,21 @@
-"""The web page (``server/static``) and the headers that protect every answer.
+"""The web pages (``server/static``) and the headers that protect every answer.
 
-``GET /`` serves ``static/index.html`` under a strict Content-Security-Policy (the page
-loads nothing from other hosts, and this makes sure it never can); ``/static`` serves the
-rest, revalidated on every load so a new release's ``app.js`` wins. Without the folder,
-``/`` answers a one-line pointer to ``/docs``. :class:`SecurityHeaders` adds a few headers
-to every response.
+Each page is a static HTML file served under a strict Content-Security-Policy (it loads
+nothing from other hosts, runs no inline script, and this makes sure it never can), so
+every page works offline:
+
+``GET /``               the check page (``index.html``, ``app.js``)
+``GET /rules``          the rule catalogue as a table (``rules.html``, ``rules.js``, which
+                        reads ``/v1/rules``)
+``GET /rules/{code}``   one rule and its documentation (the same page, reading
+                        ``/v1/rules/{code}``; 404 for an unknown rule)
+``GET /docs``           Swagger UI on ``/openapi.json``, from the copy in
+                        ``static/swagger-ui`` (``docs.html``, ``docs.js``); FastAPI's own
+                        ``/docs`` and ``/redoc`` load theirs from a CDN, so they are off
+
+``/static`` serves the rest, revalidated on every load so a new release's ``app.js`` wins.
+Without the folder, each page answers a one-line pointer to ``/openapi.json``.
+:class:`SecurityHeaders` adds a few headers to every response.
 """
 
 from __future__ import annotations
@@ -15,6 +26,8 @@ from typing import Any
 
 from fastapi import APIRouter, FastAPI, Request
 from fastapi.responses import FileResponse, PlainTextResponse, Response
+
+from urdflint.engine import registry
 
 STATIC = Path(__file__).resolve().parent / "static"
 SECURITY_HEADERS = (
@@ -52,13 +65,36 @@ class SecurityHeaders:
         await self.app(scope, receive, sending)
 
 
+def _page(name: str, status: int = 200) -> Response:
+    """``static/<name>`` under :data:`PAGE_HEADERS`, or a pointer to the API description."""
+    page = STATIC / name
+    if page.is_file():
+        return FileResponse(page, status, media_type="text/html", headers=PAGE_HEADERS)
+    return PlainTextResponse("urdflint service: the API is described at /openapi.json\n", status)
+
+
 @router.get("/", include_in_schema=False)
 async def index() -> Response:
-    """The web page, or a pointer to the API documentation when there is none."""
-    page = STATIC / "index.html"
-    if page.is_file():
-        return FileResponse(page, media_type="text/html", headers=PAGE_HEADERS)
-    return PlainTextResponse("urdflint service: see /docs for the API\n")
+    """The check page."""
+    return _page("index.html")
+
+
+@router.get("/rules", include_in_schema=False)
+async def rules_page() -> Response:
+    """The rule catalogue, as a table."""
+    return _page("rules.html")
+
+
+@router.get("/rules/{code}", include_in_schema=False)
+async def rule_page(code: str) -> Response:
+    """One rule and its documentation (404 when there is no such rule)."""
+    return _page("rules.html", 200 if registry.lookup(code) is not None else 404)
+
+
+@router.get("/docs", include_in_schema=False)
+async def docs_page() -> Response:
+    """Swagger UI on ``/openapi.json``, from the copy this server ships."""
+    return _page("docs.html")
 
 
 def mount_static(app: FastAPI) -> None:

@@ -12,7 +12,15 @@ module globals. Each worker runs one job at a time (``worker.main``); the pool
   :class:`JobTimeout`; a worker that dies on its own raises :class:`WorkerDied`. Either way a
   fresh worker takes the place, in the background, before the slot is given out again;
 - replaces a worker after ``max_tasks`` jobs, to bound slow leaks;
-- raises :class:`Busy` when no worker frees up within the wait limit.
+- raises :class:`Busy` when no worker frees up within the wait limit;
+- notices workers that die while starting: it counts consecutive start failures and keeps
+  the last one's reason (``error``, the worker's own exception line when it could send it),
+  which ``/readyz`` reports. :meth:`Pool.keep_starting` retries the start a few times with
+  a back-off; when no worker ever started (or every slot was lost), it gives up: ``failed``
+  holds the reason and ``on_failed`` is called (the app then stops the server, non-zero).
+
+How a worker starts, away from the folder the server was started in, and how it tells
+why it could not, is in ``starting.py``.
 """
 
 from __future__ import annotations
@@ -20,17 +28,18 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
-import multiprocessing
 import signal
 import threading
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
-from .worker import WorkerConfig, main
+from .starting import greeting, launch, signal_name
 
 log = logging.getLogger("urdflint.server.pool")
-STARTUP_TIMEOUT = 60.0  # seconds a new worker may take to import urdflint and say hello
+START_ATTEMPTS = 4  # pool starts tried (0.5, 1, 2 s apart) before the server gives up
+START_BACKOFF = 0.5  # seconds before the second start attempt; doubles after each
 
 
 class PoolError(Exception):
@@ -44,30 +53,12 @@ class JobTimeout(PoolError):
 class WorkerDied(PoolError):
     def __init__(self, exitcode: int | None) -> None:
         self.exitcode = exitcode
-        name = _signal_name(exitcode)
+        name = signal_name(exitcode)
         super().__init__(f"the lint worker ended ({name}) while checking this input")
 
 
 class Busy(PoolError):
     pass
-
-
-def _signal_name(exitcode: int | None) -> str:
-    if exitcode is None:
-        return "unknown"
-    if exitcode < 0:
-        with contextlib.suppress(ValueError):
-            return signal.Signals(-exitcode).name
-    return f"exit code {exitcode}"
-
-
-def _context() -> Any:
-    try:
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["urdflint.server._preload"])
-        return ctx
-    except ValueError:  # pragma: no cover - no fork server on this platform
-        return multiprocessing.get_context("spawn")
 
 
 @dataclass
@@ -129,35 +120,54 @@ class Pool:
     _lock: threading.Lock = field(default_factory=threading.Lock)
     _tasks: set[asyncio.Task[None]] = field(default_factory=set)
     _closed: bool = False
+    failures: int = 0  # consecutive worker starts that failed
+    error: str | None = None  # why the last worker start failed (None once one succeeds)
+    failed: str | None = None  # why the pool gave up: no worker can start
+    on_failed: Callable[[str], None] | None = None  # told once, when the pool gives up
+    _lost: int = 0  # slots whose worker could not be replaced
 
     @property
     def ready(self) -> bool:
-        return self._started is not None and self._started.is_set() and not self._closed
+        started = self._started is not None and self._started.is_set()
+        return started and not self._closed and self.failed is None
+
+    @property
+    def problem(self) -> str | None:
+        """Why no job can run now (``None`` when workers are up or still starting fine)."""
+        if self.failed is not None:
+            return self.failed
+        if self.error is not None and (not self.ready or self._lost >= self.size):
+            return f"the lint workers cannot start: {self.error}"
+        return None
 
     def spawn(self) -> Worker:
-        """Start one worker process (blocking: call it from a thread)."""
-        ctx = _context()
-        parent, child = ctx.Pipe(duplex=True)
-        process = ctx.Process(
-            target=main,
-            args=(child, WorkerConfig(memory=self.memory, timeout=self.timeout)),
-            name="urdflint-worker",
-            daemon=True,
-        )
-        process.start()
-        child.close()
-        worker = Worker(process, parent)
+        """Start one worker process (blocking: call it from a thread); counts the start."""
+        try:
+            process, conn = launch(self.memory, self.timeout)
+        except Exception as exc:  # no process at all (out of processes or memory, say)
+            self._starts(f"cannot start a process: {exc!r}")
+            raise PoolError(self.error) from exc
+        worker = Worker(process, conn)
         with self._lock:
             self._all.add(process.pid)
-        try:  # the worker says hello once it has bootstrapped
-            if parent.poll(STARTUP_TIMEOUT) and parent.recv() == "ready":
-                return worker
-        except (EOFError, OSError):
-            pass
+        failure = greeting(process, conn)
+        if failure is None:
+            self._starts(None)
+            return worker
         worker.kill()
+        reason, details = failure
+        if reason != self.error:  # the details once, not for every worker and attempt
+            log.error("a lint worker could not start: %s\n%s", reason, details.rstrip())
+        self._starts(reason)
         with self._lock:
             self._all.discard(process.pid)
-        raise PoolError(f"a lint worker did not start ({_signal_name(process.exitcode)})")
+        raise PoolError(reason)
+
+    def _starts(self, reason: str | None) -> None:
+        """Count a worker start: a success resets the count, a failure keeps its reason."""
+        with self._lock:
+            self.failures = 0 if reason is None else self.failures + 1
+            self.error = reason
 
     async def start(self) -> None:
         """Start the workers once (in threads: the first start also starts the fork server).
@@ -184,25 +194,61 @@ class Pool:
                 max_workers=2 * self.size + 2, thread_name_prefix="urdflint-pool"
             )
         loop = asyncio.get_running_loop()
-        started: list[Worker] = []
-        try:
+        started: list[Worker | BaseException] = []
+        try:  # the first start also starts the fork server, the others share it
             started.append(await loop.run_in_executor(self._threads, self.spawn))
-            started += await asyncio.gather(
-                *(loop.run_in_executor(self._threads, self.spawn) for _ in range(self.size - 1))
-            )
         except Exception as exc:
-            for worker in started:
-                worker.kill()
-            log.error("the lint workers did not start: %r", exc)
-            raise PoolError("the lint workers could not start (see the server log)") from exc
-        self._idle.extend(started)
+            started.append(exc)
+        else:
+            started += await asyncio.gather(
+                *(loop.run_in_executor(self._threads, self.spawn) for _ in range(self.size - 1)),
+                return_exceptions=True,
+            )
+        workers = [w for w in started if isinstance(w, Worker)]
+        if len(workers) < len(started):
+            for worker in workers:
+                await loop.run_in_executor(self._threads, worker.kill)
+            reason = self.error or next(e for e in started if not isinstance(e, Worker))
+            raise PoolError(f"the lint workers could not start: {reason}")
+        self._idle.extend(workers)
         self._started = self._started or asyncio.Event()
         self._started.set()
+
+    async def keep_starting(
+        self, attempts: int = START_ATTEMPTS, backoff: float = START_BACKOFF
+    ) -> bool:
+        """Start the workers, trying ``attempts`` times with a doubling back-off.
+
+        False when no attempt worked: the pool gives up (:meth:`give_up`).
+        """
+        for attempt in range(attempts):
+            try:
+                await self.start()
+                return True
+            except PoolError as exc:
+                log.error("start attempt %d of %d failed: %s", attempt + 1, attempts, exc)
+                if self._closed:
+                    return False
+            if attempt + 1 < attempts:
+                await asyncio.sleep(backoff * 2**attempt)
+        self.give_up(f"no lint worker could start ({attempts} attempts): {self.error}")
+        return False
+
+    def give_up(self, reason: str) -> None:
+        """No job can ever run: remember why and tell ``on_failed`` (once)."""
+        if self.failed is not None or self._closed:
+            return
+        self.failed = reason
+        log.critical("%s", reason)
+        if self.on_failed is not None:
+            self.on_failed(reason)
 
     async def run(self, job: Any, wait: float | None = None) -> dict[str, Any]:
         """Run ``job`` in a worker; :class:`Busy`, :class:`JobTimeout`, :class:`WorkerDied`."""
         if self._closed:
             raise Busy("the server is shutting down")
+        if self.failed is not None:
+            raise Busy(self.failed)
         try:
             await self.start()
         except PoolError as exc:
@@ -258,14 +304,17 @@ class Pool:
             self._all.discard(worker.process.pid)
         if self._closed:
             return
-        for attempt in range(3):
+        for attempt in range(START_ATTEMPTS):
             try:
                 fresh = await loop.run_in_executor(self._threads, self.spawn)
                 break
-            except Exception:  # pragma: no cover - cannot start a process
-                log.exception("cannot start a lint worker (attempt %d)", attempt + 1)
-                await asyncio.sleep(1)
-        else:  # pragma: no cover
+            except Exception as exc:
+                log.error("cannot replace a lint worker (attempt %d): %s", attempt + 1, exc)
+                await asyncio.sleep(START_BACKOFF * 2**attempt)
+        else:  # the slot is lost; with every slot lost, no job can ever run
+            self._lost += 1
+            if self._lost >= self.size:
+                self.give_up(f"every lint worker died and none could be restarted: {self.error}")
             return
         self._idle.append(fresh)
         self._slots.release()
@@ -293,4 +342,6 @@ class Pool:
             "size": self.size,
             "idle": len(self._idle),
             "started": self.ready,
+            "start_failures": self.failures,
+            "lost": self._lost,
         }

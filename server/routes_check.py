@@ -194,6 +194,8 @@ async def _lint(
         try:
             answer = await pool.run(job)
         except Busy as exc:
+            if pool.problem is not None:  # not busy: the workers cannot start
+                return error(503, "no lint worker can start (see /readyz)", {"Retry-After": "5"})
             return error(503, f"the server is busy ({exc})", {"Retry-After": "1"})
         except JobTimeout:
             return error(504, f"checking this input took over the {limits.timeout:g} s time limit")

@@ -1,8 +1,12 @@
 """The probes and the rule catalogue: ``/healthz``, ``/readyz``, ``/version``, ``/v1/rules``.
 
-``/readyz`` runs a :class:`ReadyJob` in a worker (a tiny Pinocchio model, a tiny mesh) and
-reuses a successful answer for :data:`READY_TTL` seconds; the cache lives in the app's
-``state.readiness``.
+``/healthz`` is liveness only: 200 as long as the process answers, whatever the workers
+do (restarting a server whose workers are busy would not help). ``/readyz`` runs a
+:class:`ReadyJob` in a worker (a tiny Pinocchio model, a tiny mesh) and reuses a successful
+answer for :data:`READY_TTL` seconds (the cache lives in the app's ``state.readiness``);
+it answers 503 with ``{"ready": false, "reason": ...}`` while the workers start, when they
+are all busy, and when they cannot start (the reason names the cause, e.g. an import
+error in the worker; the server then exits, see ``app.py``).
 """
 
 from __future__ import annotations
@@ -32,17 +36,28 @@ router = APIRouter()
 
 @router.get("/healthz", tags=["probes"])
 async def healthz() -> dict[str, str]:
-    """Liveness: the event loop answers. Touches nothing else."""
+    """Liveness: 200 while the process serves requests. Touches nothing else, not even the
+    lint workers (``/readyz`` reports those)."""
     return {"status": "ok"}
 
 
-@router.get("/readyz", tags=["probes"])
+@router.get(
+    "/readyz",
+    tags=["probes"],
+    responses={503: {"description": 'not ready: `{"ready": false, "reason": ...}`'}},
+)
 async def readyz(request: Request) -> JSONResponse:
-    """Readiness: a worker builds a tiny Pinocchio model and loads a tiny mesh."""
+    """Readiness: a worker builds a tiny Pinocchio model and loads a tiny mesh.
+
+    503 with the reason while the lint workers start, when all are busy, or when they
+    cannot start (then the server exits soon after, for its supervisor to restart it).
+    """
     pool, limits = pool_of(request), limits_of(request)
     readiness: dict[str, Any] = request.app.state.readiness
+    if pool.problem is not None:
+        return _not_ready(request, pool.problem, retry=False)
     if not pool.ready:
-        return error(503, "the lint workers are starting", {"Retry-After": "1"})
+        return _not_ready(request, "the lint workers are starting")
     cached = readiness.get("answer")
     if cached is None or time.monotonic() - readiness.get("at", 0.0) > READY_TTL:
         folder = await run_in_threadpool(tempfile.mkdtemp, "", "urdflint-", limits.tmpdir)
@@ -50,10 +65,10 @@ async def readyz(request: Request) -> JSONResponse:
             answer = await pool.run(ReadyJob(folder), wait=0.5)
         except Busy:
             if cached is None:
-                return error(503, "every lint worker is busy", {"Retry-After": "1"})
+                return _not_ready(request, pool.problem or "every lint worker is busy")
             answer = cached
         except (JobTimeout, WorkerDied) as exc:
-            return error(503, f"the readiness check failed: {exc}")
+            return _not_ready(request, f"the readiness check failed: {exc}", retry=False)
         finally:
             await run_in_threadpool(shutil.rmtree, folder, True)
         if answer["status"] == 200:
@@ -63,6 +78,13 @@ async def readyz(request: Request) -> JSONResponse:
     body["workers"] = pool.stats()
     body["limits"] = limits.public()
     return JSONResponse(body, status_code=200 if cached["status"] == 200 else 503)
+
+
+def _not_ready(request: Request, reason: str, retry: bool = True) -> JSONResponse:
+    """503 ``{"ready": false, "reason": ..., "workers": ...}`` (``detail``: the reason too)."""
+    body = {"ready": False, "reason": reason, "detail": reason}
+    body["workers"] = pool_of(request).stats()
+    return JSONResponse(body, status_code=503, headers={"Retry-After": "1"} if retry else None)
 
 
 @router.get("/version", tags=["probes"])

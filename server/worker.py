@@ -16,6 +16,7 @@ and the fence's, are importable from here too.
 from __future__ import annotations
 
 import contextlib
+import traceback
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -69,12 +70,19 @@ class WorkerConfig:
 
 
 def main(conn: Connection, config: WorkerConfig) -> None:
-    """The worker loop: receive a job, send its reply; ``None`` ends the loop."""
-    limit_threads()
-    set_memory_limit(config.memory)
-    with contextlib.suppress(ImportError):
-        from . import _preload  # noqa: F401  (already imported when forked from the forkserver)
-    install_fence()
+    """The worker loop: say ``"ready"`` (or ``("failed", reason)``), then receive a job and
+    send its reply until ``None`` ends the loop. The pool starts it (``starting.BOOTSTRAP``).
+    """
+    try:
+        limit_threads()
+        set_memory_limit(config.memory)
+        with contextlib.suppress(ImportError):
+            from . import _preload  # noqa: F401  (already imported when forked from the forkserver)
+        install_fence()
+    except BaseException as exc:  # the pool reports why this worker could not start
+        reason = traceback.format_exception_only(exc)[-1].strip()
+        conn.send(("failed", reason, traceback.format_exc()))
+        raise SystemExit(1) from None
     conn.send("ready")
     while True:
         try:

@@ -23,28 +23,33 @@ REVIEWED_ERRORS: dict[str, set[str]] = {
     "allegro_hand_right": {"I001"},
     "spot": {"I001"},
     "robotiq_2f_85": {"I001"},
-    # Depth-camera links: principal moments 8.7e-6 + 6.7e-4 < 1.4e-3 (physically impossible).
-    "anymal_c": {"I005"},
+    # (anymal_c: its depth-camera links break A + B >= C (8.7e-6 + 6.7e-4 < 1.4e-3), but they
+    # are welded to 'base', which Gazebo lumps them into and which stays valid: I005 warnings.)
     # <gazebo reference> to links that do not exist (rear camera, ee_link, depth cameras):
     # Gazebo drops those blocks without a message.
     "atlas_v5": {"G001"},
     "ur10_gazebo": {"G001"},
     "unitree_a1": {"G001"},
     "unitree_go1": {"G001"},
-    # effort="-1" velocity="-1" (SDF's "unlimited", not URDF's): Pinocchio refuses the model.
-    # Pinocchio is therefore not handed the model (P001 names the J010 finding).
+    # effort="-1" velocity="-1" (SDF's "unlimited", not URDF's): Pinocchio refuses the model
+    # ("min_effort > max_effort"); P001 says so and cites the J010 finding.
     "eve_r3": {"J010", "P001"},
+    # pybullet_data's iiwa pins its base with <mass value="0"/> (PyBullet's fixed-base
+    # convention): Gazebo's converter drops the massless root and with it every link.
+    "kuka_iiwa": {"I013"},
     # Gripper fingers with iyy = izz = 0 but ixx > 0: no rigid body has that tensor.
     "fetch": {"I003"},
     # Ten moving links with an all-zero (or -5e-20) tensor; r_ankle_1's moments are ~1e-20.
     "icub": {"I003", "I004"},
     # Missing gazebo references (6), massless finger-tip frames on the prismatic gripper
-    # joints (Gazebo drops r/l_gripper_joint), sensor mounts with 0.001 + 0.001 < 0.01.
-    "pr2": {"G001", "I001", "I005"},
+    # joints (Gazebo drops r/l_gripper_joint). (Its sensor mounts with 0.001 + 0.001 < 0.01 are
+    # welded to a valid head body: I005 warnings.)
+    "pr2": {"G001", "I001"},
     # All nine finger links: 0.0018 + 0.0024 < 0.0128.
     "robotiq_3f": {"I005"},
-    # Antennas with a negative principal moment; arm_1_link violates A + B >= C by 2 %.
-    "tiago": {"I004", "I005"},
+    # arm_1_link violates A + B >= C by 2 %. (The antennas' negative principal moments are
+    # welded to a valid base body: I004 warnings.)
+    "tiago": {"I005"},
     # Meshes referenced by relative path (meshes/*.STL) that this copy does not ship
     # (MANIFEST: "meshes not kept"): in this tree the files really are missing.
     "unitree_g1_29dof": {"C004"},

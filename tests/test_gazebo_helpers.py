@@ -103,3 +103,33 @@ def test_names() -> None:
     assert gs.near_miss("mu1", known) is None
     assert gs.suggest("Organge", ["Orange", "Grey"]) == "Orange"
     assert gs.suggest("stick_link", ["imu_link", "base_link"]) is None
+
+
+def test_a_dangling_block_is_checked_as_a_link_or_joint_block() -> None:
+    doc = Document("r.urdf", ROBOT)
+    blocks = {g.get("reference"): g for g in doc.gazebo}
+    assert gs.checked_scopes(doc, blocks["nothing"]) == {gs.LINK, gs.JOINT}
+    assert gs.checked_scopes(doc, blocks["arm"]) == {gs.LINK}
+    assert gs.describe(doc, blocks["nothing"]) == "the undefined reference 'nothing'"
+    assert [owner for _, _, owner in gs.block_keys(doc)] == ["joint 'f3'"]
+
+
+def test_every_problem_of_a_dangling_block_is_reported_in_one_run() -> None:
+    """Fixing the reference (G001) must not reveal a second round of findings."""
+    from tests.helpers import lint_text
+
+    text = """<robot name="r">
+      <link name="base_link"/>
+      <gazebo reference="base_lnk">
+        <material>Gazebo/Organge</material>
+        <mu1>0.8.1</mu1>
+        <mu>1</mu>
+        <static>true</static>
+        <stopKp>1</stopKp>
+      </gazebo>
+    </robot>"""
+    found = lint_text(text, select=("G",))
+    assert sorted(f.code for f in found) == ["G001", "G003", "G004", "G005", "G006", "G007"]
+    fixed = lint_text(text.replace("base_lnk", "base_link"), select=("G",))
+    assert {f.code for f in fixed} <= {f.code for f in found} - {"G001"}
+    assert len(fixed) == len(found) - 1

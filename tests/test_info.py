@@ -92,7 +92,8 @@ def test_model_that_cannot_be_built_exits_1(capsys) -> None:
     code, out = run(capsys, "info", "--isolated", str(BLOCKED))
     assert code == 1
     assert "upper_arm" in out  # the tree is still shown
-    assert "model not built: the model was not given to Pinocchio because of J010" in out
+    assert "model not built: Pinocchio refuses the model: joint " in out
+    assert "(see J010 non-positive-effort-or-velocity on line 10)" in out
     code, out = run(capsys, "info", "--isolated", "--format", "json", str(BLOCKED))
     data = json.loads(out)
     assert code == 1 and data["built"] is False and data["mass"] is None

@@ -81,3 +81,57 @@ def test_non_unit_axis_tolerance(axis: str, options: dict, found: bool) -> None:
         if f.code == "J008"
     ]
     assert bool(hits) is found
+
+
+def mimic_robot(follower: str, leader: str) -> str:
+    def joint(name: str, kind: str, child: str, extra: str = "") -> str:
+        return (
+            f'<joint name="{name}" type="{kind}"><parent link="base"/><child link="{child}"/>'
+            f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>{extra}'
+            "</joint>"
+        )
+
+    return (
+        '<robot name="r"><link name="base"/><link name="a"/><link name="b"/>'
+        + joint("leader", leader, "a")
+        + joint("follower", follower, "b", '<mimic joint="leader"/>')
+        + "</robot>"
+    )
+
+
+@pytest.mark.parametrize(
+    ("follower", "leader", "expected"),
+    [
+        # what Drake 1.51 does with each pair, observed: refuses (error) or ignores the mimic
+        ("revolute", "continuous", None),
+        ("prismatic", "revolute", None),
+        ("revolute", "fixed", "error"),  # "which has 1 DOF cannot mimic ... which has 0 DOF"
+        ("revolute", "planar", "error"),  # "... which has 3 DOF"
+        (
+            "revolute",
+            "floating",
+            "error",
+        ),  # "mimic element specifies joint ... which does not exist"
+        ("fixed", "revolute", "error"),  # "which has 0 DOF cannot mimic ... which has 1 DOF"
+        ("fixed", "planar", "error"),  # "which has 0 DOF cannot mimic ... which has 3 DOF"
+        ("planar", "planar", "warning"),  # "The mimic element will be ignored."
+        ("fixed", "fixed", None),  # ignored with a warning; nothing moves on either side
+        ("revolute", "hinge", None),  # S006's
+    ],
+)
+def test_j014_judges_each_pair_of_joint_types(
+    follower: str, leader: str, expected: str | None
+) -> None:
+    found = lint_text(mimic_robot(follower, leader), select=("J014",))
+    assert [f.severity.name.lower() for f in found] == ([expected] if expected else [])
+    if found:
+        assert found[0].element == "/robot/joint[@name='follower']/mimic"
+
+
+def test_j014_leaves_undefined_and_self_mimics_to_s008() -> None:
+    text = mimic_robot("revolute", "fixed")
+    assert (
+        lint_text(text.replace('<mimic joint="leader"/>', '<mimic joint="x"/>'), select=("J014",))
+        == []
+    )
+    assert lint_text(text.replace('<mimic joint="leader"/>', "<mimic/>"), select=("J014",)) == []

@@ -388,3 +388,96 @@ def test_i008_places_rotated_meshes_in_the_link_frame(tmp_path: Path) -> None:
     assert "outside its geometry (x" in found[0].message
     upright = lint(robot(mesh("box.obj")), tmp_path, ("I008",)).findings
     assert upright == []
+
+
+# -- Collada units ---------------------------------------------------------------------------
+
+
+def collada_box(path: Path, size: tuple[float, float, float], unit: str | None) -> Path:
+    """A Collada box ``size`` file units across (z from 0), declaring ``unit`` metres per unit."""
+    sx, sy, sz = size
+    corners = [(x, y, z) for x in (-sx / 2, sx / 2) for y in (-sy / 2, sy / 2) for z in (0, sz)]
+    positions = " ".join(f"{v:g}" for corner in corners for v in corner)
+    triangles = "0 3 1 0 2 3 4 5 7 4 7 6 0 1 5 0 5 4 2 6 7 2 7 3 0 4 6 0 6 2 1 3 7 1 7 5"
+    asset = f'<unit name="u" meter="{unit}"/>' if unit is not None else ""
+    path.write_text(
+        '<?xml version="1.0"?>\n'
+        '<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">'
+        f"<asset>{asset}<up_axis>Z_UP</up_axis></asset>"
+        '<library_geometries><geometry id="g"><mesh><source id="p">'
+        f'<float_array id="a" count="24">{positions}</float_array><technique_common>'
+        '<accessor source="#a" count="8" stride="3"><param name="X" type="float"/>'
+        '<param name="Y" type="float"/><param name="Z" type="float"/></accessor>'
+        '</technique_common></source><vertices id="v"><input semantic="POSITION" source="#p"/>'
+        '</vertices><triangles count="12"><input semantic="VERTEX" source="#v" offset="0"/>'
+        f"<p>{triangles}</p></triangles></mesh></geometry></library_geometries>"
+        '<library_visual_scenes><visual_scene id="s"><node id="n" name="n">'
+        '<instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>'
+        '<scene><instance_visual_scene url="#s"/></scene></COLLADA>\n'
+    )
+    return path
+
+
+@pytest.mark.parametrize(
+    ("unit", "size"),
+    [("0.0254", 0.254), ("0.001", 0.01), ("1", 10.0), (None, 10.0), ("abc", 10.0), ("0", 10.0)],
+)
+def test_collada_unit_is_applied_like_gazebo_and_rviz(
+    tmp_path: Path, unit: str | None, size: float
+) -> None:
+    """A 10-unit cube: PyBullet reports a 0.254 m / 0.01 m box for inches / millimetres."""
+    path = collada_box(tmp_path / "cube.dae", (10.0, 10.0, 10.0), unit)
+    info = MeshCache().load(path)
+    assert info.error is None
+    assert info.extents == approx((size, size, size))
+    assert info.unit == approx(size / 10.0)
+    assert info.volume == approx(size**3)
+
+
+def test_collada_unit_combines_with_the_urdf_scale(tmp_path: Path) -> None:
+    path = collada_box(tmp_path / "box.dae", (100.0, 100.0, 300.0), "0.001")
+    info = MeshCache().load(path, (2.0, 1.0, 1.0))
+    assert info.extents == approx((0.2, 0.1, 0.3))
+    assert info.center_mass()[0] == approx((0.0, 0.0, 0.15))
+
+
+def test_c006_names_the_collada_unit_when_scaled_twice(tmp_path: Path) -> None:
+    collada_box(tmp_path / "box.dae", (100.0, 100.0, 300.0), "0.001")
+    assert lint(robot(mesh("box.dae")), tmp_path, ("C006",)).findings == []
+    found = lint(robot(mesh("box.dae", scale="0.001 0.001 0.001")), tmp_path, ("C006",)).findings
+    assert len(found) == 1
+    assert "0.0003 m across with scale 0.001 0.001 0.001 and its Collada unit of 0.001 m" in (
+        found[0].message
+    )
+
+
+def test_i007_and_i008_see_the_collada_unit(tmp_path: Path) -> None:
+    """0.05 x 0.05 x 0.15 m written in inches: 5.9 units tall, plausible in metres too."""
+    inches = 1 / 0.0254
+    collada_box(tmp_path / "in.dae", (0.05 * inches, 0.05 * inches, 0.15 * inches), "0.0254")
+    inertia = (
+        '<inertial><origin xyz="0 0 0.075"/><mass value="1"/>'
+        '<inertia ixx="0.002083" ixy="0" ixz="0" iyy="0.002083" iyz="0" izz="0.000417"/>'
+        "</inertial>"
+    )
+    body = f'<link name="part">{inertia}{mesh("in.dae")}</link>'
+    text = robot("", extra=_fixed_to_arm("part") + body)
+    assert lint(text, tmp_path, ("I007", "I008", "C006")).findings == []
+    far = text.replace('<origin xyz="0 0 0.075"/>', '<origin xyz="0 0 0.5"/>')
+    assert [f.code for f in lint(far, tmp_path, ("I008",)).findings] == ["I008"]
+    heavy = text.replace('ixx="0.002083"', 'ixx="2"').replace('iyy="0.002083"', 'iyy="2"')
+    assert [f.code for f in lint(heavy, tmp_path, ("I007",)).findings] == ["I007"]
+
+
+def _fixed_to_arm(child: str) -> str:
+    return (
+        f'<joint name="{child}_joint" type="fixed"><parent link="upper_arm"/>'
+        f'<child link="{child}"/></joint>\n'
+    )
+
+
+def test_collada_up_axis_is_not_applied_like_gazebo(tmp_path: Path) -> None:
+    """Gazebo's ColladaLoader reads <unit> but not <up_axis>; trimesh ignores it too."""
+    path = collada_box(tmp_path / "y_up.dae", (10.0, 20.0, 40.0), "0.01")
+    path.write_text(path.read_text().replace("Z_UP", "Y_UP"))
+    assert MeshCache().load(path).extents == approx((0.1, 0.2, 0.4))

@@ -135,11 +135,18 @@ def test_fixed_to_world_robot_naive_total_is_wrong_urdflint_is_right() -> None:
     assert result.link_masses == pytest.approx({"world": 0, "link1": 1, "link2": 1, "link3": 1})
 
 
-def test_p002_names_the_welded_link_as_info(tmp_path: Path) -> None:
-    (finding,) = [f for f in lint(RRBOT, tmp_path) if f.code == "P002"]
-    assert finding.severity.name == "INFO" and finding.element == "/robot"
-    assert "'link1' (1 kg, welded to the root link 'world')" in finding.message
-    assert "2 kg, not the URDF's 3 kg" in finding.message
+def test_p002_names_the_welded_link_as_info_when_expectations_are_set(tmp_path: Path) -> None:
+    assert [f for f in lint(RRBOT, tmp_path) if f.code == "P002"] == []  # no expectation: silent
+    path = tmp_path / "rrbot.urdf"
+    path.write_text(RRBOT)
+    for expect in ({"mass": 3.0}, {"com": (0.0, 0.0, 1.0)}):
+        settings = replace(
+            config.Settings(select=("P002",)), expect=replace(config.Expect(), **expect)
+        )
+        (finding,) = linter.lint_path(path, str(path), settings).findings
+        assert finding.severity.name == "INFO" and finding.element == "/robot"
+        assert "'link1' (1 kg, welded to the root link 'world')" in finding.message
+        assert "2 kg, not the URDF's 3 kg" in finding.message
 
 
 def test_free_floating_robot_counts_its_root_link() -> None:
@@ -236,41 +243,86 @@ def test_zero_total_mass_has_no_com() -> None:
     assert result.built and result.com is None and result.com_problem == "the total mass is 0 kg"
 
 
-def test_blocking_static_error_means_pinocchio_is_never_called(monkeypatch, tmp_path: Path) -> None:
-    calls: list[str] = []
-    monkeypatch.setattr(pin, "buildModelFromXML", lambda *a, **k: calls.append("called"))
+def test_refusal_cites_the_static_error_behind_it(tmp_path: Path) -> None:
     text = RRBOT.replace('effort="10" velocity="1"/>', 'effort="-1" velocity="1"/>', 1)
     result = doc_of(text).physics
-    assert calls == [] and not result.built and result.blocker is not None
-    assert result.blocker.code == "J010"
+    assert not result.built and not result.misread
+    assert result.blocker is not None and result.blocker.code == "J010"
     (finding,) = [f for f in lint(text, tmp_path) if f.code == "P001"]
-    assert calls == []
-    assert finding.element == "/robot" and finding.severity.name == "ERROR"
-    assert "not given to Pinocchio because of J010 non-positive-effort-or-velocity on line 21" in (
-        finding.message
+    assert finding.element == "/robot"  # J010 points at the <limit>; P001 cites it
+    assert finding.severity.name == "ERROR"
+    assert finding.message == (
+        "Pinocchio refuses the model: joint 'joint1' has effort -1 in its <limit>, and Pinocchio "
+        "uses the range -effort..effort, so min_effort > max_effort "
+        "(see J010 non-positive-effort-or-velocity on line 21)"
     )
     assert "J010" in (finding.fix or "")
 
 
+def test_kinematic_loops_are_never_handed_to_pinocchio(monkeypatch, tmp_path: Path) -> None:
+    # pin 4.1 refuses some, builds others without a joint, and crashes on a self-parent
+    calls: list[str] = []
+    monkeypatch.setattr(pin, "buildModelFromXML", lambda *a, **k: calls.append("called"))
+    text = RRBOT.replace(
+        "</robot>",
+        '<joint name="x" type="fixed"><parent link="world"/><child link="link2"/></joint></robot>',
+    )
+    result = doc_of(text).physics
+    assert calls == [] and not result.built and result.blocker is not None
+    assert result.blocker.code == "S005"
+    (finding,) = [f for f in lint(text, tmp_path) if f.code == "P001"]
+    assert calls == [] and finding.element == "/robot"
+    assert "not given to Pinocchio because of S005 kinematic-loop" in finding.message
+
+
 @pytest.mark.parametrize(
-    ("change", "code"),
+    ("change", "code", "words"),
     [
-        (('<mass value="1.0"/>', '<mass value="1,0"/>'), "X004"),  # urdfdom drops the inertial
-        (('<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>'), "J007"),  # a NaN joint
-        (('<mass value="1.0"/>', "<mass/>"), "I012"),  # dropped silently
         (
-            (
-                "</robot>",
-                '<joint name="x" type="fixed"><parent link="world"/>'
-                '<child link="link2"/></joint></robot>',
-            ),
-            "S005",
+            ('<mass value="1.0"/>', '<mass value="1,0"/>'),
+            "X004",
+            "Pinocchio misreads link 'link1': urdfdom cannot read its <inertial>, so Pinocchio "
+            "holds the link with 0 kg and a zero inertia tensor (X004 on line 13",
+        ),
+        (
+            ('<mass value="1.0"/>', "<mass/>"),
+            "I012",
+            "holds the link with 0 kg and a zero inertia tensor (I012 on line 13",
+        ),
+        (
+            ('ixy="0" ', ""),
+            "I012",
+            "holds the link with 1 kg and a zero inertia tensor (I012 on line 14",
+        ),
+        (
+            ('<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>'),
+            "J007",
+            "Pinocchio misreads joint 'joint1': it builds the joint about the zero axis, so the "
+            "joint cannot move (its entry of the mass matrix is 0; J007 on line 21",
         ),
     ],
 )
-def test_misread_models_are_blocked(change: tuple[str, str], code: str) -> None:
-    result = doc_of(RRBOT.replace(*change, 1)).physics
-    assert not result.built and result.blocker is not None and result.blocker.code == code
+def test_misread_models_are_built_and_reported(
+    tmp_path: Path, change: tuple[str, str], code: str, words: str
+) -> None:
+    text = RRBOT.replace(*change, 1)
+    result = doc_of(text).physics
+    assert not result.built and result.misread
+    assert result.blocker is not None and result.blocker.code == code
+    (finding,) = [f for f in lint(text, tmp_path) if f.code == "P001"]
+    assert words in finding.message and finding.severity.name == "ERROR"
+
+
+def test_static_errors_pinocchio_reads_correctly_do_not_block(tmp_path: Path) -> None:
+    # S008: a <mimic> naming no joint; Pinocchio ignores <mimic>, urdflint builds it as a joint
+    text = MIMIC.replace('<mimic joint="finger1"', '<mimic joint="nothing"')
+    result = doc_of(text).physics
+    assert result.built and result.blocker is None and result.dof == 1
+    assert [f for f in lint(text, tmp_path) if f.code == "P001"] == []
+    planar = RRBOT.replace('type="continuous"', 'type="planar"', 1).replace(
+        '<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>', 1
+    )  # Pinocchio ignores a planar axis
+    assert doc_of(planar).physics.built
 
 
 def test_defects_in_visuals_do_not_block() -> None:

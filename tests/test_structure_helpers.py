@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from lxml import etree
 from urdflint.rules.geometry.c002_collision_same_as_visual_mesh import normalise
 
@@ -104,3 +105,97 @@ def test_loop_through_a_second_parent_is_reported_once() -> None:
     )
     found = codes(text, "S005")
     assert len(found) == 1 and "'in' and joint 'ba'" in found[0][1]
+
+
+def test_a_duplicated_link_with_two_parents_gets_both_findings() -> None:
+    """S001 and S005 in one run: renaming the copy must not reveal the second parent later."""
+    text = (
+        '<robot name="r"><link name="base"/><link name="arm"/>'
+        + joint("j1", "base", "arm")
+        + '<link name="arm"/>'
+        + joint("j2", "base", "arm")
+        + "</robot>"
+    )
+    found = lint_text(text, select=("S",))
+    assert sorted(f.code for f in found) == ["S001", "S005"]
+    assert "child of both joint 'j1' and joint 'j2'" in next(
+        f.message for f in found if f.code == "S005"
+    )
+
+
+def test_a_second_parent_is_reported_even_when_its_parent_link_is_undefined() -> None:
+    text = (
+        '<robot name="r"><link name="base"/><link name="arm"/>'
+        + joint("j1", "base", "arm")
+        + joint("j2", "bsae", "arm")
+        + "</robot>"
+    )
+    assert sorted(f.code for f in lint_text(text, select=("S",))) == ["S003", "S005"]
+
+
+def test_duplicates_inside_xacro_macros_name_where_the_first_was_written(tmp_path) -> None:
+    from pathlib import Path
+
+    from urdflint.engine import config, linter
+
+    path = Path(tmp_path) / "robot.urdf.xacro"
+    path.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="base"/>\n'
+        '  <xacro:macro name="finger" params="side">\n'
+        '    <joint name="${side}_joint" type="fixed">\n'
+        '      <parent link="base"/><child link="tip"/>\n'
+        "    </joint>\n"
+        '    <link name="tip"/>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:finger side="left"/>\n'
+        '  <xacro:finger side="right"/>\n'
+        "</robot>\n"
+    )
+    settings = config.Settings(select=("S001", "S005"))
+    found = linter.lint_path(path, str(path), settings).findings
+    s001 = next(f for f in found if f.code == "S001")
+    assert (s001.line, s001.column) == (7, 5)
+    assert s001.message.endswith(
+        f"(first defined on line 7, in macro `finger` called from {path}:9)"
+    )
+    assert {f.code for f in found} == {"S001", "S005"}
+
+
+@pytest.mark.parametrize(
+    ("targets", "severity"),
+    [(["mujoco"], "info"), (["gazebo-classic"], "error"), (["mujoco", "gz-sim"], "error")],
+)
+def test_spherical_is_accepted_only_when_mujoco_is_the_only_target(
+    targets: list[str], severity: str
+) -> None:
+    """MuJoCo 4 builds a ball joint (mjJNT_BALL) from type="spherical"; urdfdom refuses it."""
+    text = (
+        '<robot name="r"><link name="base"/><link name="head"/>'
+        + joint("neck", "base", "head", "spherical")
+        + "</robot>"
+    )
+    found = lint_text(text, select=("S006",), targets=targets)
+    assert [f.severity.name.lower() for f in found] == [severity]
+    ball = lint_text(text.replace("spherical", "ball"), select=("S006",), targets=["mujoco"])
+    assert [f.severity.name.lower() for f in ball] == ["error"]
+
+
+def test_no_links_is_an_error_for_urdf_but_x011_for_a_xacro_library(tmp_path) -> None:
+    from pathlib import Path
+
+    from urdflint.engine import config, linter
+
+    assert [f.code for f in lint_text('<robot name="r"/>', select=("S011",))] == ["S011"]
+    leftover = (
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:macro name="m"/></robot>'
+    )
+    assert lint_text(leftover, select=("S011",)) == []  # an unexpanded library: X008
+    library = Path(tmp_path) / "colours.xacro"
+    library.write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<material name="red"><color rgba="1 0 0 1"/></material></robot>'
+    )
+    found = linter.lint_path(library, str(library), config.Settings()).findings
+    assert [f.code for f in found] == ["X011"]

@@ -1,4 +1,4 @@
-"""X: the document itself (XML, root element, numbers, unknown elements)."""
+"""X: the document itself (XML, root, namespaces, numbers, unknown elements and attributes)."""
 
 from urdflint.rules.document import (  # noqa: F401
     x001_invalid_xml,
@@ -12,4 +12,6 @@ from urdflint.rules.document import (  # noqa: F401
     x009_unsupported_urdf_version,
     x010_xacro_expansion_failed,
     x011_xacro_library,
+    x012_undeclared_namespace_prefix,
+    x013_unknown_attribute,
 )

@@ -4,9 +4,27 @@
 Reports the XML syntax error lxml found, with its line and column. It also
 reports files over 64 MiB, which urdflint refuses to parse.
 
+The other rules still run on the tree that libxml2's recovery mode rebuilds
+from the file, when that tree is a `<robot>`; their messages end with "(from the
+part of the file that could be read after the X001 error)", since what follows
+the error may be read differently from what was meant. The physics rules (P)
+do not run on such a tree. A file with a DOCTYPE or entities (X002) is never
+recovered.
+
 ## Why is this bad?
-No URDF consumer can read the file at all. Note that yourdfpy silently
-retries such files in recover mode and may load half of the robot.
+The file is not XML, and what each consumer makes of it depends on its parser.
+Strict XML parsers refuse it: xacro (expat: "not well-formed (invalid token)",
+"junk after document element"), urdf_parser_py and the other lxml-based Python
+tools; yourdfpy silently retries in recover mode and may load half of the robot.
+The C++ consumers use TinyXML (urdfdom 3.0.1, `check_urdf`) or tinyxml2
+(PyBullet, MuJoCo, Drake, sdformat, Pinocchio's urdfdom 6.0), which refuse
+unclosed or mismatched tags, repeated attributes and truncated files ("Error
+reading end tag", "Failed to parse XML file: XML_ERROR_MISMATCHED_ELEMENT";
+tinyxml2 also refuses an unquoted attribute value, which `check_urdf` accepts),
+but load some broken files without a word: observed with a stray `&` or `<` in
+an attribute value, a `--` inside a comment, an undefined entity such as
+`&nbsp;` and a second root element after `</robot>`. Such a file works in the
+simulator and breaks the first time xacro or a Python tool reads it.
 
 ## How to fix
 Fix the syntax at the reported position: an unclosed tag, a stray `<` or `&`

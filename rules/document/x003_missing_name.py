@@ -7,20 +7,39 @@ Reports `<robot>`, `<link>`, `<joint>`, a top-level `<material>` and the
 ## Why is this bad?
 Names are how URDF refers to everything: joints name their parent and child
 links, visuals name their material, controllers and TF name joints and links.
-urdfdom (and with it ROS, Gazebo's URDF import and Pinocchio) refuses the whole
-model: "No name given for the robot.", "No name given for the link.",
-"unnamed joint found", "Material must contain a name attribute" and "Visual
-material must contain a name attribute". PyBullet fails the same way, Drake
-wants a robot name, and MuJoCo silently skips unnamed materials. An empty
-`name=""` passes the parsers but produces a robot, link or joint nobody can
-refer to (an error too).
+What a missing name costs depends on the element (observed with `check_urdf`
+3.0.1, Pinocchio 4.1, sdformat 12.3, PyBullet 3.2.7, MuJoCo 4.0 and Drake 1.51):
+
+- a `<robot>`, `<link>` or `<joint>` without `name`: urdfdom refuses the whole
+  model ("No name given for the robot.", "No name given for the link.",
+  "unnamed joint found"), and so do ROS, Pinocchio, sdformat (Gazebo), PyBullet
+  and Drake. MuJoCo refuses a nameless link or joint too ("required attribute
+  missing: 'name'") and only accepts a nameless robot;
+- a top-level `<material>` without `name`: urdfdom skips that material ("Material
+  must contain a name attribute") and loads the rest; Drake refuses the model
+  ("Material tag is missing a required name");
+- a visual's `<material>` without `name`: urdfdom drops the visual ("Visual
+  material must contain a name attribute", "Could not parse visual element for
+  Link") together with every collision of that link, and PyBullet refuses the
+  file ("failed to parse link");
+- an empty `name=""` passes urdfdom's attribute check but produces a link or
+  joint nobody can refer to: urdfdom then refuses a joint whose child is `""`
+  ("missing a parent and/or child link specification"), PyBullet crashes on a
+  joint named `""`, sdformat refuses it ("Empty string used when setting a
+  required parameter"). These are errors.
+
+An empty *robot* name depends on the target: urdfdom, Pinocchio, PyBullet and
+MuJoCo load such a robot, but sdformat refuses it ("Empty string used when
+setting a required parameter. Key[name]"), so Gazebo cannot spawn it, and Drake
+aborts the process. It is an error when a Gazebo target (`gazebo-classic`,
+`gz-sim`) is selected and a warning otherwise (`--target mujoco`).
 
 An empty material name is a warning: a top-level `<material name="">` or a
 visual's `<material name=""/>` reference without a colour of its own defines
-or finds nothing. A visual's `<material name="">` that carries its own
-`<color>` or `<texture>` is not reported: the SolidWorks exporter writes it
-for every link, and urdfdom, Gazebo, MuJoCo and PyBullet use the inline colour
-without looking the name up.
+or finds nothing (Drake refuses the former). A visual's `<material name="">` that
+carries its own `<color>` or `<texture>` is not reported: the SolidWorks exporter
+writes it for every link, and urdfdom, Gazebo, MuJoCo and PyBullet use the inline
+colour without looking the name up.
 
 ## How to fix
 Give the element a unique, non-empty `name`. A visual's colour still needs a
@@ -37,6 +56,7 @@ from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, children
 from urdflint.model.finding import Severity
 from urdflint.model.schema import owner
+from urdflint.model.targets import GAZEBO
 
 
 @rule("X003", "missing-name", Severity.ERROR, fix="Add a unique, non-empty name attribute.")
@@ -55,10 +75,24 @@ def check(doc: Document) -> Iterator[Hit]:
         if name is None:
             yield Hit(el, f"{what} has no name")
         elif not name.strip():
-            if el.tag != "material":
+            if el is doc.root:
+                yield _empty_robot_name(doc)
+            elif el.tag != "material":
                 yield Hit(el, f"{what} has an empty name")
             elif not _inline(el):
                 yield Hit(el, f"{what} has an empty name", severity=Severity.WARNING)
+
+
+def _empty_robot_name(doc: Document) -> Hit:
+    """An empty robot name only breaks sdformat (Gazebo) and Drake: an error for Gazebo."""
+    if doc.targets.intersection(GAZEBO):
+        return Hit(doc.robot, "<robot> has an empty name, which sdformat (Gazebo) refuses")
+    return Hit(
+        doc.robot,
+        "<robot> has an empty name; urdfdom and MuJoCo accept it, sdformat (Gazebo) and "
+        "Drake refuse it",
+        severity=Severity.WARNING,
+    )
 
 
 def _inline(material: etree._Element) -> bool:

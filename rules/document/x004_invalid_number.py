@@ -13,11 +13,17 @@ with whitespace (`value="1.0 "`): urdfdom's `strToDouble` requires the whole
 string to be consumed. Values with `${...}` or `$(...)` are left to X008.
 
 ## Why is this bad?
-urdfdom, and with it ROS, `check_urdf`, Gazebo's URDF import and Pinocchio,
-refuses the whole model ("mass [..] is not a float", "Unable to parse
-component [..] to a double", "Material [X] has malformed color rgba values").
-Python parsers (urdf_parser_py, yourdfpy) are worse: `float()` accepts `nan`,
-`inf` and `1_0`, so the robot loads and its dynamics turn to NaN later. Every
+urdfdom (and with it ROS, `check_urdf`, sdformat's URDF import and Pinocchio)
+cannot read the value ("mass [..] is not a float", "Unable to parse component
+[..] to a double", "effort value (nan) is not a valid float", "Material [X] has
+malformed color rgba values"). What it does next depends on where the value is
+(observed with `check_urdf` 3.0.1): in a `<joint>` it refuses the whole model
+("joint xml is not initialized correctly"); in an `<inertial>` it keeps the link
+with mass 0 and without any of its visuals and collisions; in a `<visual>` or
+`<collision>` it drops that element and the link's collisions after it; in a
+colour it loads the material without its colour. Python parsers (urdf_parser_py,
+yourdfpy) are worse: `float()` accepts `nan`, `inf` and `1_0` (a mass of `1_0`
+loads as 10 kg), so the robot loads and its dynamics turn to NaN later. Every
 other urdflint rule skips values it cannot read, so fix these first.
 
 ## How to fix

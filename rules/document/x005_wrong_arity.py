@@ -8,14 +8,18 @@ malformed token (`xyz="0,0,1"`) is reported once, by X004, even if its count
 is also wrong.
 
 ## Why is this bad?
-urdfdom, and with it ROS, Gazebo's URDF import and Pinocchio, refuses the whole
-model ("Parser found 2 elements but 3 expected while parsing vector",
-"Mesh scale was specified, but could not be parsed", "Material has malformed
-color rgba values"). PyBullet accepts a single scalar mesh scale ("Scale should
-be a vector3, not single scalar. Workaround activated.") and silently uses
-zeros for a short origin or box size, so a file that works in PyBullet can fail
-everywhere else. An RGB colour without alpha
-is the classic `rgba` mistake.
+urdfdom (and with it ROS, sdformat's URDF import and Pinocchio) cannot read the
+vector ("Parser found 2 elements but 3 expected while parsing vector", "Mesh
+scale was specified, but could not be parsed") and, as observed with `check_urdf`
+3.0.1, refuses the whole model when it is a joint's `<origin>`, keeps a link with
+mass 0 and without its visuals and collisions when it is in the `<inertial>`, and
+drops the `<visual>` or `<collision>` (with the link's later collisions) when it
+is there. An RGB colour without alpha, the classic `rgba` mistake, is worse
+because it is silent: urdfdom reads `rgba="1 0 0"` as opaque black (0 0 0 1)
+without a message. PyBullet accepts a single scalar mesh scale ("Scale should be
+a vector3, not single scalar. Workaround activated.") and warns "Couldn't parse
+vector3" but loads a short origin or box size, so a file that works in PyBullet
+can fail everywhere else.
 
 ## How to fix
 Write all components, separated by spaces: `scale="0.001 0.001 0.001"` rather

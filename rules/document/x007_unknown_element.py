@@ -6,8 +6,10 @@ reports elements that URDF does not define where they stand: typos
 (`<colision>`), elements one level off (`<inertia>` directly in `<link>`,
 `<inertial>` directly in `<robot>`, `<origin>` in `<link>`) and elements no
 parser reads (`<joint_properties>`, a link's `<gravity>` or `<self_filter>`,
-a joint's `<controller_gains>`). The message names the place the element
-belongs or the closest known name.
+a joint's `<controller_gains>`), including URDF elements written inside
+`<geometry>` (a visual's `<material>` or an `<origin>` put one level too deep;
+an unknown shape such as `<cube>` is C003's). The message names the place the
+element belongs or the closest known name.
 
 Accepted extensions are not reported and not descended into: top-level
 `<gazebo>`, `<transmission>`, `<ros2_control>`, `<mujoco>`, `<sensor>` (URDF
@@ -16,16 +18,21 @@ sensors) and `<deformable>` (PyBullet); a link's `<contact>` (PyBullet) and
 `<specular>` in a material (PyBullet); a `<material>` inside `<collision>`
 (MuJoCo registers it as a colour). Namespaced elements (`drake:*`...) are
 extensions and skipped; `xacro:*` elements are X008's. Unknown *attributes*
-are out of scope.
+are X013's.
 
 ## Why is this bad?
 Every URDF parser looks children up by name and silently ignores the rest:
-urdfdom, Gazebo, MuJoCo, Drake, PyBullet and Pinocchio say nothing
-(urdf_parser_py alone warns "Unknown tag"). A misspelt `<colision>` leaves the
-link without collision; an `<inertia>` outside `<inertial>` leaves the link
-without mass properties, so Gazebo Classic drops it; `<joint_properties>`
-(the pre-1.0 spelling of `<dynamics>`) leaves the joint undamped. The model
-loads, and behaves differently from what the file says.
+urdfdom (`check_urdf`), sdformat (Gazebo), MuJoCo, Drake, PyBullet and Pinocchio
+say nothing about this rule's bad example (urdf_parser_py alone warns "Unknown
+tag"). A misspelt `<colision>` leaves the link without collision; an `<inertia>`
+outside `<inertial>` leaves the link without mass properties, so Gazebo drops it
+(sdformat 12 drops every massless link of the example: "A model must have at
+least one link") and MuJoCo refuses the model ("mass and inertia of moving
+bodies must be larger than mjMINVAL"); `<joint_properties>` (the pre-1.0
+spelling of `<dynamics>`) leaves the joint undamped. A `<material>` after the
+shape inside `<geometry>` is ignored by urdfdom, which reads the shape and
+gives the visual no material. The model loads, and behaves differently from
+what the file says.
 
 ## How to fix
 Rename or move the element as the message suggests. If it is data for a
@@ -47,6 +54,7 @@ from urdflint.model.schema import SPECS, describe, homes, walk
 HINTS = {
     ("joint", "joint_properties"): "it is the pre-1.0 name of <dynamics>",
     ("link", "gravity"): "URDF has no per-link gravity; Gazebo reads it from <gazebo reference>",
+    ("geometry", "material"): "a visual's <material> goes beside <geometry>, inside <visual>",
 }
 
 
@@ -61,7 +69,7 @@ def check(doc: Document) -> Iterator[Hit]:
         if visit.key is not None:
             continue
         el = visit.element
-        if visit.parent_key == "geometry":
+        if visit.parent_key == "geometry" and not homes(el.tag):
             continue  # an unknown shape is C003 invalid-geometry's (an error there)
         where = describe(el.getparent())
         hint = _hint(el.tag, visit.parent_key)

@@ -26,7 +26,9 @@ URDF parsers do not run xacro. urdfdom, Gazebo, MuJoCo, Drake, PyBullet and
 Pinocchio ignore unknown elements silently, so an unexpanded
 `<xacro:include>` or macro call simply drops the links, joints or sensors it
 would have produced, and a link inside `<xacro:if>` disappears. A value such as
-`xyz="${l/2} 0 0"` fails to parse (urdfdom refuses the model) and
+`xyz="${l/2} 0 0"` fails to parse: urdfdom ("Unable to parse component [${l/2}]
+to a double") refuses the model when it is in a joint and otherwise drops the
+inertial, visual or collision it is in (X004 explains what each loses), and
 `filename="$(find pkg)/m.stl"` names no file. The model that loads is not the
 one the author wrote.
 

@@ -2,7 +2,9 @@
 
 ## What it does
 Flags `<gazebo>` blocks whose `reference` matches no `<link>` and no `<joint>` of the
-robot, and suggests the closest existing name.
+robot, and suggests the closest existing name. The block's contents are still checked in
+the same run (G003-G007 read them as meant for a link or a joint), so correcting the
+reference does not reveal a second round of findings.
 
 ## Why is this bad?
 sdformat's URDF converter (used by both Gazebo Classic and Gazebo Sim) files every

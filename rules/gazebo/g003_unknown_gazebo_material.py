@@ -11,6 +11,8 @@ Checks the script name in `<gazebo reference="link"><material>NAME</material>`:
 - an empty `<material/>`, or one holding SDF elements (`<ambient>`, `<script>`...) instead
   of a name, is a warning.
 
+Blocks whose `reference` names nothing (G001) are checked too.
+
 ## Why is this bad?
 sdformat copies the name into `<visual><material><script><name>` with the hard-coded URI
 `file://media/materials/scripts/gazebo.material`. OGRE looks the name up at render time
@@ -33,7 +35,7 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, children
 from urdflint.model.finding import Severity
-from urdflint.model.gazebo_spec import describe, keys_of, materials, scopes_of, suggest, value_of
+from urdflint.model.gazebo_spec import describe, keys_of, materials, suggest, value_of
 from urdflint.model.values import has_xacro
 
 PREFIX = "Gazebo/"
@@ -48,9 +50,7 @@ PREFIX = "Gazebo/"
 def check(doc: Document) -> Iterator[Hit]:
     stock, internal = materials()
     gz_sim = "gz-sim" in doc.targets
-    for gazebo in doc.gazebo:
-        if scopes_of(doc, gazebo) is None:
-            continue  # G001
+    for gazebo in doc.gazebo:  # also blocks whose reference names nothing (G001)
         owner = describe(doc, gazebo)
         for el in keys_of(gazebo):
             if el.tag != "material":

@@ -13,7 +13,8 @@ converter reads in a `<gazebo>` block of the right scope:
   `maxContacts`, `stopCfm` and `springStiffness` must not be negative; `fudgeFactor`,
   `stopErp` and `dampingFactor` must lie in [0, 1].
 
-A malformed value is an error; a value out of range a warning.
+A malformed value is an error; a value out of range a warning. The keys of a block whose
+`reference` names nothing (G001) are checked as link and joint keys alike.
 
 ## Why is this bad?
 The converter parses numbers with `std::stod`/`std::stoi`: text that does not start with a
@@ -37,7 +38,7 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.gazebo_spec import KEYS, resolved_keys, value_of, value_problem
+from urdflint.model.gazebo_spec import KEYS, block_keys, value_of, value_problem
 
 
 @rule(
@@ -47,7 +48,7 @@ from urdflint.model.gazebo_spec import KEYS, resolved_keys, value_of, value_prob
     fix="Write a plain decimal number (or true/false) within the key's valid range.",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    for el, scopes, owner in resolved_keys(doc):
+    for el, scopes, owner in block_keys(doc):
         key = KEYS.get(str(el.tag))
         if key is None or key.scope not in scopes:
             continue

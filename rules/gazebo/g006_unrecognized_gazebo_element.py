@@ -12,7 +12,8 @@ sensors is never flagged.
 
 A name that is almost a known one (`<mu>` for `<mu1>`, `<selfcollide>` for
 `<selfCollide>`, `<turnGravityOf>`, `<max_contacts>` for `<maxContacts>`) is a warning:
-it is a typo that silently does nothing. Anything else is info.
+it is a typo that silently does nothing. Anything else is info. Blocks whose `reference`
+names nothing (G001) are checked as if they were a link's or a joint's.
 
 ## Why is this bad?
 The converter copies unknown children verbatim into the SDF element with only a debug
@@ -38,6 +39,7 @@ from urdflint.model.gazebo_spec import (
     LEGACY,
     SCOPE_SDF,
     candidates,
+    checked_scopes,
     describe,
     homes,
     keys_of,
@@ -55,11 +57,12 @@ from urdflint.model.gazebo_spec import (
 def check(doc: Document) -> Iterator[Hit]:
     known = candidates()
     for gazebo in doc.gazebo:
-        scopes = scopes_of(doc, gazebo)
-        if scopes is None:
-            continue
+        scopes = checked_scopes(doc, gazebo)  # a dangling block is still checked (G001)
         owner = describe(doc, gazebo)
         into = " and ".join(SCOPE_SDF[s] for s in sorted(scopes))
+        copied = f"sdformat copies it verbatim into {into}"
+        if scopes_of(doc, gazebo) is None:
+            copied = "sdformat would copy it verbatim into the SDF <link> or <joint>"
         for el in keys_of(gazebo):
             name = str(el.tag)
             if name in LEGACY or homes(name):
@@ -77,5 +80,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 yield Hit(
                     el,
                     f"<{name}> in the <gazebo> block of {owner} is neither a Gazebo key nor "
-                    f"an SDF element; sdformat copies it verbatim into {into}",
+                    f"an SDF element; {copied}",
                 )

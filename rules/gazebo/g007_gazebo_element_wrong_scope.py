@@ -11,6 +11,9 @@ Flags children of a `<gazebo>` block that sdformat only honours in another scope
   block (SDF `<model>` has no sensors) or a `<plugin>` in a link block (SDF `<link>` has
   no plugins; model plugins go in the robot-level block).
 
+A block whose `reference` names nothing (G001) was meant for a link or a joint: only what
+belongs to neither (`static`, a model `<plugin>`...) is reported there.
+
 ## Why is this bad?
 The converter parses every key it knows whatever the block, but inserts each one only
 where it belongs: `InsertSDFExtensionLink`/`Collision`/`Visual` read only the link keys,
@@ -33,7 +36,7 @@ from urdflint.engine.registry import Hit, rule
 from urdflint.model import targets
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.gazebo_spec import KEYS, LEGACY, SCOPE_SDF, homes, resolved_keys
+from urdflint.model.gazebo_spec import KEYS, LEGACY, SCOPE_SDF, block_keys, homes
 
 BLOCK = {
     "robot": "the robot-level <gazebo> block",
@@ -50,7 +53,7 @@ BLOCK = {
     targets=targets.GAZEBO,
 )
 def check(doc: Document) -> Iterator[Hit]:
-    for el, scopes, owner in resolved_keys(doc):
+    for el, scopes, owner in block_keys(doc):
         name = str(el.tag)
         where = homes(name)
         if name in LEGACY or not where or any(s in scopes for s in where):

@@ -11,4 +11,6 @@ from urdflint.rules.geometry import (  # noqa: F401
     c008_visual_stl_no_color,
     c009_unsupported_mesh_format,
     c010_invalid_color,
+    c011_duplicate_geometry_name,
+    c012_texture_not_found,
 )

@@ -4,6 +4,8 @@
 Reports, for every `<visual>` and `<collision>` of a link:
 - no `<geometry>` (on the `<visual>`/`<collision>`);
 - a `<geometry>` with no shape, or with several (on the `<geometry>`);
+- a `<geometry>` whose first child is not its shape, such as a `<material>`
+  written inside it before the `<box>` (on the `<geometry>`);
 - an unknown shape tag such as `<cube>` (on that element);
 - a missing dimension, or one that is zero or negative: box `size`, sphere,
   cylinder and capsule `radius` and `length` (on the shape);
@@ -13,21 +15,29 @@ Warnings, not errors: `<plane>` (a PyBullet extension), `<capsule>` in a robot
 that does not declare `version="1.2"`, and a mesh `scale` with an odd number
 of negative components, which mirrors the mesh (info on a `<visual>`).
 Malformed numbers are left to X004 and X005, namespaced shapes
-(`drake:capsule`, `xacro:*`) to X007 and X008.
+(`drake:capsule`, `xacro:*`) to X007 and X008. URDF elements of other places
+written inside `<geometry>` (`<material>`, `<origin>`) are not shapes: X007
+reports them, and they count here only when they come first.
 
 ## Why is this bad?
-urdfdom refuses the whole model when a `<visual>`/`<collision>` has no
-geometry, an empty `<geometry>` ("Geometry tag contains no child element"),
-an unknown shape ("Unknown geometry type") or a missing attribute ("Mesh must
-contain a filename attribute"); so do ROS, sdformat/Gazebo and Pinocchio.
-urdfdom reads only the first of several shapes, while yourdfpy rejects
-them ("Too many of <sphere>, <cylinder>, <box>, <mesh>"). `<capsule>` is
-URDF 1.2 (urdfdom 6.0); older urdfdom, and the copy inside sdformat, refuse it
-as an unknown type, while Drake, PyBullet and MuJoCo read it. Zero and negative
-sizes pass urdfdom (before URDF 1.2) but Drake aborts the process on a
-negative box, MuJoCo refuses it ("size 0 must be positive"), and the
-sdformat converter (Gazebo) silently drops the visual; a zero-size collision
-collides with nothing. Mirrored meshes swap inside and outside in several engines: gz-sim
+urdfdom reads only the first child of `<geometry>`. When a `<visual>` or
+`<collision>` has no geometry, an empty `<geometry>` ("Geometry tag contains no
+child element"), an unknown shape or another element first ("Unknown geometry
+type 'material'") or a shape without its attribute ("Mesh must contain a
+filename attribute"), urdfdom logs "Could not parse visual element for Link" and
+stops reading that link: `check_urdf` 3.0.1 (and sdformat 12, Pinocchio 4.1)
+still load the model, but the link loses that visual or collision and every
+collision after it (a bad visual takes all the link's collisions with it).
+PyBullet refuses the file ("failed to parse link"), and MuJoCo refuses an
+unknown collision shape. Of several shapes urdfdom reads the first, while
+yourdfpy rejects them ("Too many of <sphere>, <cylinder>, <box>, <mesh>").
+`<capsule>` is URDF 1.2 (urdfdom 6.0); older urdfdom, and sdformat with it, drop
+it as an unknown geometry type (`check_urdf` 3.0.1 and sdformat 12.3: "Unknown
+geometry type 'capsule'"), while Drake, PyBullet and MuJoCo read it. Zero and
+negative sizes pass urdfdom (before URDF 1.2) but Drake aborts the process on a
+negative box, MuJoCo refuses it ("size 0 must be positive"), and the sdformat
+converter (Gazebo) silently drops the visual; a zero-size collision collides
+with nothing. Mirrored meshes swap inside and outside in several engines: gz-sim
 rejects them as collisions (gazebosim/gz-sim#2656), MuJoCo computes inward
 normals (google-deepmind/mujoco#3604), and Ogre 2 renders them inside out
 (gazebosim/gz-rendering#267).
@@ -49,6 +59,7 @@ from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, children
 from urdflint.model.finding import Severity
 from urdflint.model.geometry import shape_elements
+from urdflint.model.schema import homes
 from urdflint.model.structure import closest, q
 from urdflint.model.values import fmt, number, vector
 
@@ -77,17 +88,31 @@ def _owner(doc: Document, owner: etree._Element, where: str) -> Iterator[Hit]:
     plain = [el for el in found if not str(el.tag).startswith("{")]
     if found and not plain:
         return  # only namespaced shapes (drake:capsule, xacro:...): X007/X008, not URDF
-    if not plain:
+    shapes = [el for el in plain if _may_be_shape(str(el.tag))]
+    if not shapes:
         yield Hit(geometry, f"<geometry> of the {where} has no shape", fix="Add one shape.")
-    elif len(plain) > 1:
-        tags = ", ".join(f"<{el.tag}>" for el in plain)
+    elif len(shapes) > 1:
+        tags = ", ".join(f"<{el.tag}>" for el in shapes)
         yield Hit(
             geometry,
-            f"<geometry> of the {where} has {len(plain)} shapes ({tags})",
+            f"<geometry> of the {where} has {len(shapes)} shapes ({tags})",
             fix="Keep one shape; put the others in their own <visual>/<collision>.",
         )
     else:
-        yield from _shape(doc, plain[0], owner, where)
+        if plain[0] is not shapes[0]:
+            yield Hit(
+                geometry,
+                f"<geometry> of the {where} starts with <{plain[0].tag}>, not its shape "
+                f"<{shapes[0].tag}>; urdfdom reads only the first child and drops the {owner.tag}",
+                fix=f"Move <{plain[0].tag}> out of <geometry>; the shape must be its only child.",
+            )
+        yield from _shape(doc, shapes[0], owner, where)
+
+
+def _may_be_shape(tag: str) -> bool:
+    """A shape, or an unknown tag meant as one; not a URDF element of another place."""
+    places = homes(tag)
+    return not places or "geometry" in places
 
 
 def _shape(

@@ -11,8 +11,11 @@ reading limit, or a Collada file when pycollada is not installed, is a note
 ## Why is this bad?
 A file that does not parse is as good as missing, but harder to spot: RViz
 and Gazebo log "Unable to load mesh" and draw or collide with nothing,
-MuJoCo stops compiling ("mesh volume is negative", "at least 4 vertices
-required"), PyBullet refuses the URDF, Pinocchio's hpp-fcl throws. Typical
+MuJoCo stops compiling ("stl_decoder: invalid header in STL file" for a web
+page saved as `.stl`, "mesh volume is negative", "at least 4 vertices
+required"), Pinocchio's geometry loader (coal, formerly hpp-fcl) throws
+("Could not load resource"), and PyBullet warns "cannot extract mesh from
+'X'" and loads the link without that geometry. Typical
 causes are a truncated download, a Git LFS pointer committed instead of the
 file, an HTML error page saved with a `.stl` name, or an export that wrote
 no geometry.

@@ -1,11 +1,24 @@
 """A mesh is over 10 m or under 1 mm across after its `scale`: probably not in metres.
 
 ## What it does
-Loads each mesh, applies the `<mesh scale>`, and reports a bounding box whose
-largest side is over 10 m or under 1 mm. When dividing by 1000 (millimetres),
-100 (centimetres), or multiplying by 1000 (a scale applied twice), gives a
-plausible part size (1 cm to 2 m), the message suggests that `scale`; both
-millimetres and centimetres when both fit.
+Loads each mesh, applies the unit a Collada file declares
+(`<asset><unit meter="0.001"/>`) and the `<mesh scale>`, and reports a bounding
+box whose largest side is over 10 m or under 1 mm. When dividing by 1000
+(millimetres), 100 (centimetres), or multiplying by 1000 (a scale applied
+twice), gives a plausible part size (1 cm to 2 m), the message suggests that
+`scale`; both millimetres and centimetres when both fit.
+
+The Collada unit is applied because the tools that show and simulate a ROS
+robot apply it: Gazebo Classic and Gazebo Sim (`ColladaLoader::Load` multiplies
+the mesh by `meter`; `<up_axis>` is not applied, here neither), RViz
+(`getMeshUnitRescale` in its mesh loader) and PyBullet (a 10-unit cube
+declaring `meter="0.0254"` gets a 0.254 m bounding box, one declaring
+`meter="0.001"` a 0.01 m one). A Collada file exported in millimetres with its
+unit set is therefore already in metres; adding `scale="0.001 0.001 0.001"`
+to it shrinks it a thousand times, which this rule reports. Pinocchio 4.1
+(coal, through assimp) ignores the unit and reads the same cube as 10 m
+across, so its collision geometry differs from Gazebo's for such files. STL
+and OBJ carry no unit. MuJoCo and Drake do not read Collada at all (C009).
 
 ## Why is this bad?
 REP 103 fixes the unit of every ROS description at the metre, and so do
@@ -17,7 +30,9 @@ every consumer takes the numbers as metres.
 
 ## How to fix
 Export the mesh in metres, or set the conversion on the mesh:
-`<mesh filename="..." scale="0.001 0.001 0.001"/>` for millimetres.
+`<mesh filename="..." scale="0.001 0.001 0.001"/>` for millimetres. For a
+Collada file, either set its `<unit meter>` correctly and drop the URDF scale,
+or keep `meter="1"` and convert with the scale, never both.
 """
 
 from __future__ import annotations
@@ -49,6 +64,8 @@ def check(doc: Document) -> Iterator[Hit]:
         shown = " ".join(fmt(v) for v in scale)
         what = f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}"
         where = f"{fmt(size)} m across with scale {shown}"
+        if info.unit != 1.0:
+            where += f" and its Collada unit of {fmt(info.unit)} m"
         hints = scale_hint(size)
         if not hints:
             band = "over 10 m" if size > MAX_EXTENT else "under 1 mm"

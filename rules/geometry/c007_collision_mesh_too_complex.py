@@ -10,8 +10,8 @@ Collision checking cost grows with triangle count in every engine, and a
 detailed mesh makes contacts jittery. The "Using a URDF in Gazebo" tutorial
 strongly suggests a simplified collision model for performance; MoveIt's
 planning scene checks every collision mesh at every state; PyBullet and MuJoCo
-replace the mesh by its convex hull anyway (MuJoCo caps hulls at a few
-hundred faces), so the detail is paid for and then thrown away.
+replace the mesh by its convex hull anyway, so the detail is paid for and
+then thrown away.
 
 ## How to fix
 Export a decimated copy for `<collision>` (Blender's Decimate modifier,

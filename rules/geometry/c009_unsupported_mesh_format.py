@@ -17,8 +17,9 @@ when MuJoCo is among the targets that cannot load the file, since MuJoCo then
 refuses the whole model; a warning for Gazebo, which drops the geometry.
 
 ## Why is this bad?
-MuJoCo's URDF import stops at the first unsupported mesh, and Collada is the
-most common reason a ROS robot does not load in MuJoCo. Gazebo Classic logs
+MuJoCo's URDF import stops at the first unsupported mesh ("no decoder found
+for mesh file 'X.dae'"), and Collada is the most common reason a ROS robot
+does not load in MuJoCo. Gazebo Classic logs
 "Invalid mesh filename extension" or "Unsupported mesh format" and simulates
 the link without that visual or collision; a lost collision lets the link
 pass through the world.

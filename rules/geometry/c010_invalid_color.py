@@ -15,20 +15,24 @@ X005's. Materials inside `<collision>` and `<gazebo>` blocks are not checked:
 urdfdom does not read them.
 
 ## Why is this bad?
-urdfdom (urdfdom_headers `color.h`) rejects an out-of-range component
-("Component [..] is outside the valid range for colors [0, 1]", logged as
-"Material [X] has malformed color rgba values"), then keeps the material with
-its colour reset to opaque black. `check_urdf` (urdfdom 3.0.1 and 6.0.0) prints the
-error and still ends with "Successfully Parsed XML". Pinocchio 4.1 loads such a
-visual as black (0 0 0 1), and so do RViz and Gazebo Sim, which take colours
-from urdfdom. PyBullet and MuJoCo pass the numbers on unchecked instead, so the
-same file shows different colours in different tools.
+urdfdom (urdfdom_headers `color.h`) rejects an out-of-range component and logs
+"Material [X] has malformed color rgba values" (urdfdom 3.0.1 with
+urdfdom_headers 1.0.5 words the reason "Unable to parse component [2] to a
+double", newer headers "Component [..] is outside the valid range for colors
+[0, 1]"). `check_urdf` prints the error and still ends with "Successfully
+Parsed XML". What is left depends on where the colour is: a robot-level
+material is kept with its colour reset to opaque black (Pinocchio 4.1 loads
+the visual as 0 0 0 1), while a visual's own material is dropped ("link 'X'
+material 'Y' undefined"), so the visual gets the default colour (Pinocchio:
+0.9 grey); RViz and Gazebo Sim, which take colours from urdfdom, show the
+same. Drake refuses the model ("Rgba values must be within the range [0,
+1]"). PyBullet and MuJoCo pass the numbers on unchecked, so the same file
+shows different colours in different tools. That is a warning: everything
+but Drake loads the model, and only the colour is wrong.
 
 A `<color>` without `rgba` beside a texture is ignored by urdfdom, but Drake
-refuses the model ("Failed to parse 'rgba' attribute of <color>").
-
-These are warnings, not errors: every parser except Drake still loads the
-model, and only the colour is wrong.
+("Failed to parse 'rgba' attribute of <color>") and MuJoCo ("required
+attribute missing: 'rgba'") refuse the model, so that case is an error.
 
 ## How to fix
 Write each component as a fraction from 0 to 1: divide 0-255 values by 255, so
@@ -86,9 +90,10 @@ def check(doc: Document) -> Iterator[Hit]:
             if _textured(material):
                 yield Hit(
                     color,
-                    f"<color> of {_label(material)} has no rgba; urdfdom ignores it "
-                    "and Drake refuses the model",
+                    f"<color> of {_label(material)} has no rgba; urdfdom ignores it, "
+                    "Drake and MuJoCo refuse the model",
                     fix="Add rgba to the <color> or delete it: the texture colours the visual.",
+                    severity=Severity.ERROR,
                 )
             continue
         values = parse_numbers(raw)
@@ -98,8 +103,11 @@ def check(doc: Document) -> Iterator[Hit]:
         if outside:
             shown = ", ".join(fmt(v) for v in outside)
             noun = "component" if len(outside) == 1 else "components"
+            parent = material.getparent()
+            kept = parent is not None and parent.tag == "robot"
+            effect = "replaces the colour with opaque black" if kept else "drops the material"
             yield Hit(
                 color,
                 f"<color> of {_label(material)} has {noun} {shown} outside [0, 1]; "
-                "urdfdom replaces the colour with opaque black",
+                f"urdfdom {effect} and Drake refuses the model",
             )

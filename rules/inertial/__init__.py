@@ -13,4 +13,5 @@ from urdflint.rules.inertial import (  # noqa: F401
     i010_tiny_inertial,
     i011_root_link_inertia,
     i012_incomplete_inertial,
+    i013_massless_model,
 )

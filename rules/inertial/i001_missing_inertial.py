@@ -1,8 +1,10 @@
-"""A link has no `<inertial>`, so Gazebo drops it with its joint and everything below it.
+"""A moving link has no `<inertial>`: Gazebo drops it, MuJoCo makes up its mass or refuses it.
 
 ## What it does
-Finds links without an `<inertial>` and judges them the way Gazebo's URDF
-converter (sdformat) does, after fixed-joint lumping:
+Finds links without an `<inertial>` and judges them the way the selected
+targets load them, after fixed-joint lumping.
+
+Gazebo (`gazebo-classic`, `gz-sim`; sdformat's URDF converter):
 
 - **error** when the link hangs from a movable joint (or a movable joint hangs
   below it) and neither it nor any link fixed to it has mass;
@@ -12,24 +14,44 @@ converter (sdformat) does, after fixed-joint lumping:
 - **info** when a link merged into its parent through a fixed joint has
   geometry but no mass.
 
+MuJoCo (`mujoco`; its URDF import computes the inertia of a link without
+`<inertial>` from its collision geometry, `inertiafromgeom="auto"`):
+
+- **warning** when a moving link has collision geometry: MuJoCo makes up a mass
+  for it at 1000 kg/m³;
+- **error** when a moving link has no collision geometry (visuals are discarded)
+  and nothing fixed to it has mass, or `<mujoco><compiler
+  inertiafromgeom="false"/>` is set: MuJoCo refuses the model;
+- **info** when a link under a fixed joint has collision geometry: MuJoCo gives
+  it a made-up mass and fuses it into its parent.
+
+With several targets the message names what each does and the severity is the
+highest. When no link of the model has an `<inertial>` at all (a kinematics-only
+description), one finding on the first moving link lists the links instead of
+one finding per link.
+
 Pure frames under fixed joints (sensor, tool and optical frames without
-geometry) are not reported: Gazebo merges them into their parent and nothing is
-lost. A massless link whose fixed children carry mass is not reported either:
-Gazebo and Pinocchio lump that mass into it. Root links are not judged: a
-massless root (`base_footprint`, `world`) is the pattern KDL asks for.
+geometry) are not reported: every target merges them into their parent and
+nothing is lost. A massless link whose fixed children carry mass is not reported
+either: Gazebo, Pinocchio and MuJoCo lump that mass into it. Root links are
+I013's (a massless root costs Gazebo the whole model).
 
 ## Why is this bad?
-- Gazebo (sdformat's URDF converter) drops a link without mass (at most 1e-6 kg)
-  together with its parent joint and its whole subtree. sdformat before 9.10.1,
-  12.7.2 and 13.5.0 does it without a word, so in Gazebo Classic a wheel or an
-  arm simply disappears; newer versions print "link[X] has no <inertial> block
-  defined" and still drop it.
-- Pinocchio loads a massless moving link with a zero inertia, which makes the
-  joint-space mass matrix singular.
-- PyBullet silently gives every link without `<inertial>` a mass of 1 kg and
-  a unit inertia.
-- MuJoCo rejects moving bodies without mass ("mass and inertia of moving bodies
-  must be larger than mjMINVAL") unless it computes inertia from geometry.
+- Gazebo (sdformat's URDF converter) drops a link without mass together with
+  its parent joint and its whole subtree. sdformat before 9.10.1, 12.7.2 and
+  13.5.0 does it without a word (and also drops masses up to 1e-6 kg), so in
+  Gazebo Classic a wheel or an arm simply disappears; newer versions print
+  "urdf2sdf: link[X] has no <inertial> block defined. Please ensure this link
+  has a valid mass to prevent any missing links or joints in the resulting SDF
+  model." and still drop it (`CreateSDF` in `parser_urdf.cc`).
+- MuJoCo (4.0, observed) gives a moving link without `<inertial>` the mass of
+  its collision geometry at 1000 kg/m³ (a 10 cm cube weighs 1 kg), which is
+  rarely the part's; with no collision geometry it refuses the model: "mass and
+  inertia of moving bodies must be larger than mjMINVAL".
+- Pinocchio (4.1, observed) loads a massless moving link with a zero inertia:
+  the joint-space mass matrix is singular and `aba` returns NaN.
+- PyBullet (3.2.7, observed) warns "No inertial data for link, using mass=1,
+  localinertiadiagonal = 1,1,1" and gives the link 1 kg.
 
 ## How to fix
 Add an `<inertial>` with the link's real mass, centre of mass and inertia
@@ -44,9 +66,20 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import massless_verdict
+from urdflint.model.bodies import (
+    LUMPING,
+    MOVABLE,
+    Verdict,
+    gazebo_verdict,
+    massless_verdict,
+    mujoco_verdict,
+    selected,
+)
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
+from urdflint.model.targets import gazebo_label
+
+SHOWN = 3
 
 
 @rule(
@@ -56,13 +89,57 @@ from urdflint.model.finding import Severity
     fix="Add an <inertial> with the link's real mass, centre of mass and inertia.",
 )
 def check(doc: Document) -> Iterator[Hit]:
+    found: dict[str, Verdict] = {}
     for name, link in doc.link_map.items():
         if link.inertial is not None or not doc.graph.parent_joints.get(name):
             continue
-        verdict = massless_verdict(doc, name)
+        verdict = massless_verdict(doc, name, declared=False)
         if verdict is not None:
-            yield Hit(
-                link.element,
-                f"link '{name}' has no <inertial>, so {verdict.consequence}",
-                severity=verdict.severity,
-            )
+            found[name] = verdict
+    if len(found) > 1 and all(link.inertial is None for link in doc.links):
+        yield _kinematics_only(doc, found)
+        return
+    for name, verdict in found.items():
+        yield Hit(
+            doc.link_map[name].element,
+            f"link '{name}' has no <inertial>, so {verdict.consequence}",
+            severity=verdict.severity,
+        )
+
+
+def _kinematics_only(doc: Document, found: dict[str, Verdict]) -> Hit:
+    """One finding for a model where no link has an ``<inertial>``."""
+    moving = [n for n in found if (j := doc.graph.parent_joint(n)) and j.type in MOVABLE]
+    first = (moving or list(found))[0]
+    parts: list[str] = []
+    if selected(doc) & LUMPING:
+        gazebo = {n: gazebo_verdict(doc, n) for n in found}
+        label = gazebo_label(doc.targets)
+        if dropped := [n for n, v in gazebo.items() if v is not None and v.kind == "drop"]:
+            parts.append(f"{label} drops {_links(dropped)} with their joints")
+        if merged := [n for n, v in gazebo.items() if v is not None and v.kind == "merge"]:
+            parts.append(f"{label} merges {_links(merged)} as geometry without mass")
+    if "mujoco" in selected(doc):
+        mujoco = {n: mujoco_verdict(doc, n, declared=False) for n in found}
+        kinds = {n: v.kind for n, v in mujoco.items() if v is not None}
+        if refused := [n for n, k in kinds.items() if k == "refuse"]:
+            parts.append(f"MuJoCo refuses the model for {_links(refused)} (moving, no mass)")
+        if made_up := [n for n, k in kinds.items() if k in ("infer", "fuse")]:
+            parts.append(f"MuJoCo makes up the mass of {_links(made_up)} from collision geometry")
+    return Hit(
+        doc.link_map[first].element,
+        "no link has an <inertial> (a kinematics-only model?), so " + "; ".join(parts),
+        severity=max(v.severity for v in found.values()),
+        fix="Add an <inertial> to every link that moves, or use the model only where "
+        "dynamics do not matter (RViz, kinematics).",
+    )
+
+
+def _links(names: list[str]) -> str:
+    """``link 'a'``, ``links 'a' and 'b'``, ``links 'a', 'b', 'c' and 4 more``."""
+    quoted = [f"'{n}'" for n in names]
+    if len(names) > SHOWN:
+        listed = ", ".join(quoted[:SHOWN]) + f" and {len(names) - SHOWN} more"
+    else:
+        listed = ", ".join(quoted[:-1]) + " and " + quoted[-1] if len(quoted) > 1 else quoted[0]
+    return f"link{'s' if len(names) > 1 else ''} {listed}"

@@ -3,25 +3,34 @@
 ## What it does
 Reports links whose `<inertia>` has `ixx`, `iyy` or `izz` at or below zero:
 
-- a negative moment always (no rigid body has one; values within 1e-15 kg·m²
-  of zero count as rounding noise);
-- a zero moment when the tensor is also impossible (for example `ixx > 0` with
-  `iyy = izz = 0` breaks the triangle inequality), or when the rigid body that
-  engines simulate (the link plus the links fixed to it) is left without a
-  valid inertia and the link carries at least 1% of that body's mass.
+- a negative moment, or zeros that make the tensor impossible (for example
+  `ixx > 0` with `iyy = izz = 0` breaks the triangle inequality), always;
+  values within 1e-15 kg·m² of zero count as rounding noise;
+- zeros that describe a possible but degenerate body (a point mass, a thin
+  rod) when the rigid body that engines simulate (the link plus the links fixed
+  to it) is left without a valid inertia and the link carries at least 1% of
+  that body's mass, or when the link's own mass is negative (I002 reports the
+  mass, this rule the tensor: both problems in one run).
 
-Links without mass (I001, I002) are not judged here, and a point mass on a frame
-fixed to a body with a real inertia (a tool or sensor frame) is accepted: Gazebo,
-Pinocchio and MuJoCo lump it into that body.
+Impossible tensors are an **error**, or a **warning** on a link welded by a
+fixed joint when the only targets are Gazebo's and the lumped body is still
+valid: Gazebo sums the welded link into that body before checking it. MuJoCo
+checks every link first, and Drake and PyBullet keep welded links as bodies, so
+for them it stays an error. Links without mass (I001, I002) are not judged for
+zeros, and a point mass on a frame fixed to a body with a real inertia (a tool
+or sensor frame) is accepted: Gazebo, Pinocchio, MuJoCo and Drake load it.
 
 ## Why is this bad?
 The Gazebo tutorial warns that a zero principal moment "could lead to infinite
-acceleration under any finite torque application". sdformat (gz-math
-`MassMatrix3::IsValid`) rejects negative moments and triangle violations ("A
-link named X has invalid inertia"), MuJoCo refuses moving bodies whose inertia
-is below mjMINVAL, Drake replaces the inertia with a made-up one, and PyBullet
-(with `URDF_USE_INERTIA_FROM_FILE`) prints "Bad inertia tensor properties,
-setting inertia to zero".
+acceleration under any finite torque application". sdformat's DOM (gz-math
+`MassMatrix3::IsValid`) reports negative moments and triangle violations ("A
+link named X has invalid inertia"). Observed with a moving link: MuJoCo 4.0
+refuses any zero moment ("inertia must have positive eigenvalues", or "mass and
+inertia of moving bodies must be larger than mjMINVAL" for an all-zero tensor);
+Drake 1.51 replaces an impossible tensor with a made-up one (with a warning)
+but accepts zeros; PyBullet 3.2.7 with `URDF_USE_INERTIA_FROM_FILE` prints "Bad
+inertia tensor properties, setting inertia to zero" for impossible tensors and
+keeps zeros as written; Pinocchio loads everything as written.
 
 ## How to fix
 Use the tensor computed by your CAD tool, or the formula of a matching
@@ -33,7 +42,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies
+from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import COMPONENTS, ZERO_MOMENT, judge, principal_moments
@@ -54,11 +63,14 @@ def check(doc: Document) -> Iterator[Hit]:
         bad = [(k, v) for k, v in zip(COMPONENTS[:3], inertial.tensor[:3], strict=True) if v <= 0]
         if not bad:
             continue
-        if all(v >= -ZERO_MOMENT for _, v in bad):  # zeros (and rounding noise), no real negative
-            if inertial.mass is None or inertial.mass <= 0:
-                continue
-            if judge(principal_moments(inertial.tensor)) != "impossible" and b.excused(name):
+        negative = any(v < -ZERO_MOMENT for _, v in bad)
+        impossible = negative or judge(principal_moments(inertial.tensor)) == "impossible"
+        severity = impossible_severity(doc, name) if impossible else Severity.ERROR
+        if not impossible:  # zeros only: a point mass or a rod, possible but degenerate
+            mass = inertial.mass
+            if mass is None or mass == 0 or (mass > 0 and b.excused(name)):
                 continue
         parts = [f"{k} = {fmt(v)}" for k, v in bad]
         listed = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
-        yield Hit(inertial.inertia_element, f"link '{name}' has {listed} kg·m²")
+        message = f"link '{name}' has {listed} kg·m²" + welded_note(doc, name, severity)
+        yield Hit(inertial.inertia_element, message, severity=severity)

@@ -4,20 +4,29 @@
 For tensors whose diagonal is positive (I003 covers the others), computes the
 principal moments (the eigenvalues of the full 3×3 tensor) and reports:
 
-- a negative principal moment (below -1e-6 × the largest), always;
+- a negative principal moment (below -1e-6 × the largest), always: an
+  **error**, or a **warning** on a link welded by a fixed joint when the only
+  targets are Gazebo's and the lumped body (the link plus the links fixed to
+  it) is still valid, since Gazebo sums the welded link into that body before
+  checking it (MuJoCo checks every link first; Drake and PyBullet keep welded
+  links as bodies);
 - a zero principal moment (within 1e-6 × the largest, or below 1e-15 kg·m²,
-  MuJoCo's mjMINVAL), unless the body engines simulate (the link plus the links
-  fixed to it) has a valid inertia anyway, or the link carries under 1% of that
-  body's mass (then the heavier links are the ones reported).
+  MuJoCo's mjMINVAL), possible but degenerate, unless the link has no mass, or
+  the body engines simulate has a valid inertia anyway, or the link carries
+  under 1% of that body's mass (then the heavier links are the ones reported).
 
 ## Why is this bad?
 Large products of inertia (`ixy`, `ixz`, `iyz`) can make a tensor with a
-positive diagonal non-physical. sdformat (gz-math `IsNearPositive`) rejects it
-("A link named X has invalid inertia"), MuJoCo refuses it ("positive
-eigenvalues"), Drake substitutes a made-up inertia with a warning, and PyBullet
-zeroes it when told to read the file's inertia. Pinocchio loads it as it is and
-the dynamics become meaningless. A typical cause is a tensor exported about the
-wrong point or in the wrong frame, or with the products' signs flipped.
+positive diagonal non-physical. sdformat's DOM (gz-math `MassMatrix3::IsValid`)
+reports it ("A link named X has invalid inertia"). Observed on a moving link:
+MuJoCo 4.0 refuses both a negative and a zero principal moment ("inertia must
+have positive eigenvalues"); Drake 1.51 warns that a negative one "did not pass
+the test CouldBePhysicallyValid()" and substitutes a made-up inertia (a zero one
+it accepts); PyBullet 3.2.7 with `URDF_USE_INERTIA_FROM_FILE` sets a tensor with
+a negative principal moment to zero ("Bad inertia tensor properties"). Pinocchio
+loads it as it is and the dynamics become meaningless. A typical cause is a
+tensor exported about the wrong point or in the wrong frame, or with the
+products' signs flipped.
 
 ## How to fix
 Re-export the tensor about the centre of mass, in the `<inertial><origin>`
@@ -30,7 +39,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies
+from urdflint.model.bodies import Bodies, bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import principal_moments, tolerance
@@ -52,13 +61,20 @@ def check(doc: Document) -> Iterator[Hit]:
         tol = tolerance(moments)
         listed = ", ".join(fmt(m) for m in moments)
         if moments[0] < -tol:
+            severity = impossible_severity(doc, name)
             yield Hit(
                 inertial.inertia_element,
                 f"link '{name}' has an inertia tensor that is not positive definite "
-                f"(principal moments {listed} kg·m²)",
+                f"(principal moments {listed} kg·m²)" + welded_note(doc, name, severity),
+                severity=severity,
             )
-        elif moments[0] <= tol and not (inertial.mass and inertial.mass > 0 and b.excused(name)):
+        elif moments[0] <= tol and not _harmless(b, name, inertial.mass):
             yield Hit(
                 inertial.inertia_element,
                 f"link '{name}' has a singular inertia tensor (principal moments {listed} kg·m²)",
             )
+
+
+def _harmless(b: Bodies, name: str, mass: float | None) -> bool:
+    """A degenerate tensor nobody simulates: on a massless link, or lumped into a sound body."""
+    return mass is None or mass == 0 or (mass > 0 and b.excused(name))

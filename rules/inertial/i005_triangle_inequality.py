@@ -5,16 +5,25 @@ For positive-definite tensors (I003 and I004 cover the others), computes the
 three principal moments A ≤ B ≤ C from the full tensor and reports A + B < C,
 with a relative slack of 1e-6 × C for rounding.
 
+Such a tensor is always reported: an **error**, or a **warning** on a link
+welded by a fixed joint when the only targets are Gazebo's and the lumped body
+(the link plus the links fixed to it) is still valid. Gazebo sums the welded
+link into that body before checking it; MuJoCo checks every link before fusing
+static bodies, and Drake and PyBullet keep welded links as bodies, so for them
+it stays an error.
+
 ## Why is this bad?
 For any real mass distribution each principal moment is at most the sum of the
 other two, so such a tensor describes no physical body. A positive-definite
 check does not catch it, which is why it survives most validators (Talos
 grippers, Gepetto/example-robot-data#130; Galbot, galbot_s1_description#5).
-sdformat/gz-math (`ValidMoments`) reject it ("A link named X has invalid
-inertia"), MuJoCo refuses it ("inertia must satisfy A + B >= C; use
-'balanceinertia' to fix"), Drake warns that the moments "do not satisfy the
-triangle inequality" and substitutes another inertia, Simbody and Genesis
-refuse it too.
+sdformat's DOM (gz-math `ValidMoments`) reports it ("A link named X has invalid
+inertia"). Observed, even on a link welded to a valid body: MuJoCo 4.0 refuses
+the model ("inertia must satisfy A + B >= C; use 'balanceinertia' to fix",
+naming the welded link); Drake 1.51 warns that the moments "do not satisfy the
+triangle inequality" and substitutes another inertia; PyBullet 3.2.7 with
+`URDF_USE_INERTIA_FROM_FILE` sets it to zero ("Bad inertia tensor properties,
+setting inertia to zero for link"). Pinocchio 4.1 loads it as written.
 
 ## How to fix
 Recompute the tensor from the geometry and the mass (CAD, Drake's
@@ -28,7 +37,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies
+from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import principal_moments, tolerance
@@ -49,8 +58,10 @@ def check(doc: Document) -> Iterator[Hit]:
         a, b, c = moments
         tol = tolerance(moments)
         if a > tol and a + b < c - tol:
+            severity = impossible_severity(doc, name)
             yield Hit(
                 inertial.inertia_element,
                 f"link '{name}' has principal moments {fmt(a)}, {fmt(b)} and {fmt(c)} kg·m², "
-                f"and {fmt(a)} + {fmt(b)} < {fmt(c)}",
+                f"and {fmt(a)} + {fmt(b)} < {fmt(c)}" + welded_note(doc, name, severity),
+                severity=severity,
             )

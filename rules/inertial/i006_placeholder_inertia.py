@@ -14,11 +14,14 @@ Tensors of sensor and tool frames that are negligible next to the body they are
 fixed to are not compared.
 
 ## Why is this bad?
-The Gazebo tutorial's example inertial (`<inertia ixx="1" ... izz="1"/>`) is,
-in its own words, "made up", and it is copied into many robots. On a 5 cm,
-100 g link it is off by about 10,000×: the link reacts like a flywheel, joints
-feel sluggish, controllers tuned in simulation fail on the robot. A tensor
-pasted from another link is wrong by at least the mass ratio.
+The identity tensor is SDF's default `<inertia>`, and the ROS URDF tutorial
+once advised it ("If unsure what to put, the identity matrix is a good
+default"; answers.gazebosim.org, "The inertia matrix explained": "the identity
+matrix is a particularly bad choice"), so it is copied into many robots. On a
+5 cm, 100 g link it is off by more than 10,000×: the link reacts like a
+flywheel, joints feel sluggish, controllers tuned in simulation fail on the
+robot. Every engine loads it without a word, since it is a valid tensor. A
+tensor pasted from another link is wrong by at least the mass ratio.
 
 ## How to fix
 Compute each link's tensor from its geometry and mass (CAD, or the formula of

@@ -50,11 +50,18 @@ from collections.abc import Iterator
 from typing import Any
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies, meshes_readable
+from urdflint.model.bodies import bodies
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.geometry import shapes
-from urdflint.model.inertia import PLACEHOLDER, judge, primitive_moments, principal_moments, times
+from urdflint.model.inertia import (
+    PLACEHOLDER,
+    judge,
+    meshes_readable,
+    primitive_moments,
+    principal_moments,
+    times,
+)
 from urdflint.model.values import fmt
 
 MAX_DENSITY = 1e5  # kg/m^3, five times osmium's

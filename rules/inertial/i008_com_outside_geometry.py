@@ -41,10 +41,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import Bodies, bodies, body_box, geometry_box, has_mesh
+from urdflint.model.bodies import Bodies, bodies
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import Vec, apply
+from urdflint.model.inertia import Vec, apply, geometry_box, has_mesh, transform_box
 from urdflint.model.values import fmt
 
 MARGIN = 0.1
@@ -108,3 +108,28 @@ def _inside_body(doc: Document, b: Bodies, name: str, com: Vec) -> bool:
     point = (moved[0] + pos[0], moved[1] + pos[1], moved[2] + pos[2])
     meshes = any(has_mesh(doc.link_map[n].element, TAGS) for n, _, _ in members)
     return _inside(point, box, meshes)
+
+
+def body_box(
+    doc: Document, body: str, tags: tuple[str, ...] = ("collision", "visual")
+) -> tuple[Vec, Vec] | None:
+    """Union box, in the body's frame, of the geometry of every link lumped into ``body``.
+
+    Links without any visual or collision add nothing; ``None`` when one member's
+    geometry cannot be read or its origin is unreadable.
+    """
+    b = bodies(doc)
+    boxes: list[tuple[Vec, Vec]] = []
+    for name, rot, pos in b.members(body):
+        link = doc.link_map.get(name)
+        if link is None or not any(link.element.findall(tag) for tag in tags):
+            continue
+        box = geometry_box(doc, link.element, tags)
+        if box is None or rot is None or pos is None:
+            return None
+        boxes.append(transform_box(box, rot, pos))
+    if not boxes:
+        return None
+    lo = tuple(min(x[0][i] for x in boxes) for i in range(3))
+    hi = tuple(max(x[1][i] for x in boxes) for i in range(3))
+    return lo, hi  # type: ignore[return-value]

@@ -7,10 +7,13 @@ reports a ratio above `max-ratio` (default 1000), in either direction: a heavy
 body on a very light one, or a very light body on a heavy one.
 
 ## Why is this bad?
-Iterative and maximal-coordinate solvers (ODE in Gazebo Classic, Bullet,
-PhysX, MuJoCo's soft constraints) converge badly on ill-conditioned systems:
-a 50 kg base driving a 5 g link through a joint gives jitter, joints that
-drift apart or explode, and small time steps for nothing. A ratio like this
+Maximal-coordinate engines, whose joints are constraints solved iteratively
+(ODE in Gazebo Classic, Bullet's rigid bodies, PhysX), converge badly on
+ill-conditioned systems: a 50 kg base driving a 5 g link through a joint gives
+jitter, joints that drift apart or explode, and small time steps for nothing.
+Engines in joint coordinates (MuJoCo, Drake, Bullet's multibodies, Pinocchio)
+keep the joints exact, but their mass matrix is as ill-conditioned and their
+contact solvers suffer the same way. A ratio like this
 is also a frequent symptom of a unit slip (grams written as kilograms) or of a
 placeholder mass on a small link.
 

@@ -13,8 +13,11 @@ mass out. robot_state_publisher prints the warning on every start.
 
 ## How to fix
 Add a massless root link (for example `base_footprint`, or `world` for a
-fixed-base arm) and attach the current root to it with a `fixed` joint. Gazebo
-and Pinocchio then lump nothing away, and KDL sees the mass on a regular link.
+fixed-base arm) and attach the current root to it with a `fixed` joint. KDL then
+sees the mass on a regular segment. Gazebo keeps it: it lumps the base into the
+massless root (the simulated link takes the root's name, so move `<gazebo
+reference>` blocks to it, see G008), or, for `world`, pins the base to the world.
+Pinocchio puts both on its universe joint (see P002).
 """
 
 from __future__ import annotations

@@ -28,9 +28,12 @@ with "Successfully Parsed XML". Every consumer of urdfdom gets a damaged link:
   kept but the tensor is zero. KDL, Pinocchio and Gazebo then see a massless
   or inertia-less body.
 
-The only sign of all this is a log line that scrolls past at startup. PyBullet's
-parser, which shares urdfdom's messages, refuses the model ("failed to parse
-link").
+The only sign of all this is a log line that scrolls past at startup. Parsers
+of their own are stricter (observed): PyBullet 3.2.7 refuses the model ("failed
+to parse link", "Cannot load URDF file") when `<mass>`, its value or `<inertia>`
+is missing, though it reads a missing product of inertia as 0; MuJoCo 4.0
+refuses all of them ("XML Error: missing element: 'mass'", "required attribute
+missing: 'ixy'").
 
 ## How to fix
 Write the complete element, with every attribute in SI units:

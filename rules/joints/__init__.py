@@ -14,4 +14,5 @@ from urdflint.rules.joints import (  # noqa: F401
     j011_missing_joint_origin,
     j012_unsupported_joint_type_for_target,
     j013_incomplete_joint_element,
+    j014_mimic_of_fixed_joint,
 )

@@ -20,9 +20,9 @@ differently, none of them well:
 - Pinocchio and `check_urdf` accept the range as it is, so planners and IK then
   sample from an empty interval.
 
-Equal bounds lock the joint in ROS, MoveIt and Gazebo. MuJoCo refuses equal
-non-zero bounds ("range[0] should be smaller than range[1] in joint") and reads
-`0 0` as "no range", leaving the joint free. A joint that must not move should
+Equal bounds lock the joint in ROS, MoveIt and Gazebo, while MuJoCo (4.0)
+warns "joint 'J' has equal lower and upper limits, limit ignored" and leaves
+the joint free. A joint that must not move should
 say so with `type="fixed"`. Equal bounds are a warning, not an error, because
 ROS and Gazebo load the model.
 

@@ -11,9 +11,12 @@ Checks `effort` and `velocity` in the `<limit>` of `revolute`, `continuous` and
 ## Why is this bad?
 A negative limit has no meaning in URDF. Pinocchio (4.1) refuses the model
 ("Some components of min_effort are greater than max_effort", and the same for
-velocity). urdfdom 6 rejects it in files with `version="1.2"`. MuJoCo silently
-uses the absolute value. The value often comes from SDF, where `-1` means
-"unlimited"; URDF has no such convention, so the intent is lost.
+velocity), and a negative velocity makes Drake abort the whole process
+(`set_velocity_limits(): condition '(lower_limits.array() <=
+upper_limits.array()).all()' failed`). urdfdom 6 rejects it in files with
+`version="1.2"`. MuJoCo silently uses the absolute value (an effort of -1
+becomes the force range -1..1). The value often comes from SDF, where `-1`
+means "unlimited"; URDF has no such convention, so the intent is lost.
 
 A zero limit loads everywhere but means different things:
 

@@ -5,22 +5,26 @@ Compares three totals: the sum of every link's `<mass value>`; what
 `pinocchio.computeTotalMass(model)` returns on the fixed-base model built from
 the file; and the model's full total, which adds `model.inertias[0]`.
 
-- **info** when only the naive total differs. Pinocchio puts the root link, and
-  every link welded to it by fixed joints, on the *universe* joint. Its
-  `computeTotalMass` and `centerOfMass` sum joints 1..n, so they leave those links
-  out. The finding names those links, their mass and what the correct total is.
-  The file is fine. This is about how the model is used.
-- **error** when even the full total differs from the URDF's sum. Pinocchio
-  then holds a link with a mass different from the one written, and the finding
-  names the links.
+- **info**, only when an expected mass or centre of mass is set (`--expect-mass`,
+  `--expect-com`, `[tool.urdflint.expect]`: P003 and P004 are in play), when the
+  naive total differs. Pinocchio puts the root link, and every link welded to it
+  by fixed joints, on the *universe* joint. Its `computeTotalMass` and
+  `centerOfMass` sum joints 1..n, so they leave those links out. The finding
+  names those links, their mass and what the correct total is, so that the
+  figures P003 and P004 state can be compared with a script's. The file is fine;
+  without expectations the note is not emitted (every fixed-base arm with a
+  massive base would get it), and `urdflint info` prints the full total anyway.
+- **error**, always, when even the full total differs from the URDF's sum.
+  Pinocchio then holds a link with a mass different from the one written, and
+  the finding names the links.
 
 ## Why is this bad?
 A fixed-base model of a mobile robot, of a humanoid, or of an arm whose base
-link carries mass, "weighs" less than the robot. For husky, 10.5 kg is counted
-of 56.6 kg. The centre of mass is off, and with them gravity compensation,
-balance and payload estimates. No warning is given. The fixed-to-world layout
-(RRBot, Gazebo tutorials: link `world`, a fixed joint, then the robot) hides the
-first real link this way.
+link carries mass, "weighs" less than the robot in `computeTotalMass`. For
+husky, 10.5 kg is counted of 56.6 kg. The centre of mass is off, and with them
+gravity compensation, balance and payload estimates. No warning is given. The
+fixed-to-world layout (RRBot, Gazebo tutorials: link `world`, a fixed joint,
+then the robot) hides the first real link this way.
 
 ## How to fix
 In code that uses Pinocchio, add `model.inertias[0]` (its mass and its lever) to
@@ -55,6 +59,7 @@ def check(doc: Document) -> Iterator[Hit]:
     physics = doc.physics
     if not physics.built:
         return
+    expect = doc.settings.expect
     static = urdf_masses(doc)
     if not physics.mass_matches:
         wrong = [
@@ -78,7 +83,7 @@ def check(doc: Document) -> Iterator[Hit]:
             severity=Severity.ERROR,
         )
         return
-    if close(physics.naive_mass, physics.urdf_mass):
+    if close(physics.naive_mass, physics.urdf_mass) or (expect.mass is None and expect.com is None):
         return
     heavy = [n for n in physics.universe_links if static.get(n, 0.0) != 0.0]
     heavy.sort(key=lambda n: (n != physics.root, -abs(static[n])))

@@ -14,7 +14,8 @@ It also reports a `--q`/`expect.q` entry that cannot be applied: a joint the
 model does not have (with a did-you-mean), a fixed joint, a mimic joint (set its
 leader) or a floating or planar joint (several coordinates). And it reports a
 COM that cannot be computed because a link has negative mass or the total is
-not positive (Pinocchio would return NaN).
+not positive: Pinocchio 4.1 returns NaN for a zero total, and for negative
+masses a weighted average with negative weights, a point that means nothing.
 
 ## Why is this bad?
 The centre of mass decides whether a legged robot stands, how a mobile base tips

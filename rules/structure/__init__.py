@@ -11,4 +11,5 @@ from urdflint.rules.structure import (  # noqa: F401
     s008_undefined_mimic_joint,
     s009_undefined_material,
     s010_duplicate_material,
+    s011_no_links,
 )

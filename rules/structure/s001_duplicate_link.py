@@ -5,9 +5,12 @@ Reports every `<link>` whose `name` was already used by an earlier link, and
 names the line of the first definition.
 
 ## Why is this bad?
-urdfdom (and with it ROS, `check_urdf`, sdformat/Gazebo and Pinocchio) refuses
-the whole model with "link 'X' is not unique". Parsers that accept it keep
-only one of the two definitions, so joints, `<gazebo reference>` blocks and
+urdfdom refuses the whole model with "link 'X' is not unique", and with it
+ROS, `check_urdf`, Gazebo's URDF converter and Pinocchio. PyBullet ("Link
+name is not unique, link names in the same model have to be unique"),
+MuJoCo ("repeated URDF name") and Drake ("already contains a body named 'X'")
+refuse it too. yourdfpy loads it without a word; tools that look links up by
+name then find one of the two, so joints, `<gazebo reference>` blocks and
 SRDF entries may end up attached to a body you did not mean.
 
 ## How to fix
@@ -23,7 +26,7 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.structure import q
+from urdflint.model.structure import q, written_at
 
 
 @rule("S001", "duplicate-link", Severity.ERROR, fix="Rename or remove one of the two links.")
@@ -34,5 +37,5 @@ def check(doc: Document) -> Iterator[Hit]:
             yield Hit(
                 link.element,
                 f"link {q(link.name)} is defined again "
-                f"(first defined on line {first.element.sourceline})",
+                f"(first defined on {written_at(doc, first.element)})",
             )

@@ -5,10 +5,12 @@ Reports every `<joint>` whose `name` was already used by an earlier joint, and
 names the line of the first definition.
 
 ## Why is this bad?
-urdfdom (and with it ROS, `check_urdf`, sdformat/Gazebo and Pinocchio) refuses
-the whole model with "joint 'X' is not unique"; yourdfpy reports
-"Duplicate joint X found". Parsers that accept it keep only one of the two, so
-controllers, transmissions and `<mimic>` elements address an arbitrary one.
+urdfdom refuses the whole model with "joint 'X' is not unique", and with it
+ROS, `check_urdf`, Gazebo's URDF converter and Pinocchio; Drake refuses it
+too ("already contains a frame named 'X_parent'") and PyBullet crashes with
+a segmentation fault. MuJoCo and yourdfpy load it without a word, with two
+joints of the same name, so controllers, transmissions and `<mimic>`
+elements address an arbitrary one.
 
 ## How to fix
 Give each joint a unique name (and update transmissions, mimic references and
@@ -22,7 +24,7 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.structure import q
+from urdflint.model.structure import q, written_at
 
 
 @rule("S002", "duplicate-joint", Severity.ERROR, fix="Rename or remove one of the two joints.")
@@ -33,5 +35,5 @@ def check(doc: Document) -> Iterator[Hit]:
             yield Hit(
                 joint.element,
                 f"joint {q(joint.name)} is defined again "
-                f"(first defined on line {first.element.sourceline})",
+                f"(first defined on {written_at(doc, first.element)})",
             )

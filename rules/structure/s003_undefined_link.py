@@ -7,10 +7,12 @@ link name. A `<parent>`/`<child>` that is missing, or has no `link`
 attribute, is S007's job.
 
 ## Why is this bad?
-urdfdom refuses the model ("parent link [X] of joint [Y] not found. This is
-not valid according to the URDF spec."), and so do ROS, `check_urdf`,
-sdformat/Gazebo, Pinocchio and Drake. Tools that build the tree themselves
-drop the joint and everything below it, or report a second root link.
+urdfdom refuses the model ("Failed to build tree: child link [X] of joint
+[Y] not found", the same for a parent), and with it ROS, `check_urdf`,
+Gazebo's URDF converter and Pinocchio. Drake ("Could not find link named
+'X'"), MuJoCo ("URDF joint parent or child missing") and PyBullet ("Cannot
+find child link for joint") refuse it too, and yourdfpy fails with a
+`ValueError`.
 
 ## How to fix
 Correct the spelling of the link name, or add the missing `<link>`. If the

@@ -8,11 +8,13 @@ parent joint names an undefined parent (S003) or lacks a `<parent>` (S007) is
 left to those rules.
 
 ## Why is this bad?
-urdfdom refuses the model ("Two root links found: [a] and [b]"), and with it
-ROS, `check_urdf`, sdformat/Gazebo and Pinocchio. PyBullet crashes with a
-segmentation fault. MuJoCo silently welds the orphan to the world, and Drake
-adds it as a free-floating body, so the part falls away from the robot in
-simulation.
+urdfdom refuses the model ("Failed to find root link: Two root links found:
+[a] and [b]"), and with it ROS, `check_urdf`, Gazebo's URDF converter and
+Pinocchio. PyBullet crashes with a segmentation fault. MuJoCo silently welds
+the orphan to the world, Drake adds it as a free body, and yourdfpy attaches
+it to the base frame ("not connected via joints. Will add link to base
+frame"), so the part stays in the air or falls away from the robot
+depending on the tool.
 
 ## How to fix
 Connect the orphan to the tree with a joint (usually `fixed`), or delete it

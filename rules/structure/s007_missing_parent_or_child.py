@@ -6,9 +6,13 @@ and a `<parent>`/`<child>` element whose `link` attribute is missing or empty
 (on that element).
 
 ## Why is this bad?
-urdfdom refuses the model ("Joint [X] is missing a parent and/or child link
-specification"), and with it ROS, `check_urdf`, sdformat/Gazebo and Pinocchio.
-A joint that connects nothing also leaves its child as an extra root link.
+urdfdom refuses the model ("Failed to build tree: Joint [X] is missing a
+parent and/or child link specification."), and with it ROS, `check_urdf`,
+Gazebo's URDF converter and Pinocchio. PyBullet ("parent link or child link
+is empty for joint"), MuJoCo ("missing element: 'child'") and Drake ("joint
+'X' doesn't have a child node!") refuse it too, and yourdfpy fails with an
+`AttributeError`. A joint that connects nothing also leaves its child as an
+extra root link.
 
 ## How to fix
 Add `<parent link="..."/>` and `<child link="..."/>` naming the two links the

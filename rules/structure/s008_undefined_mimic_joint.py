@@ -8,12 +8,18 @@ first of its joints in the file.
 
 ## Why is this bad?
 urdfdom refuses a `<mimic>` without `joint` ("joint mimic: no mimic joint
-specified") but never checks the target, so ROS tools load the model and then
-have nothing to follow: `joint_state_publisher` and MoveIt compute a
-follower's position from its leader. Drake refuses the model ("mimic element
-specifies joint 'K' which does not exist", "Joints cannot mimic themselves").
-sdformat converts `<mimic>` into an SDF joint constraint
-(gazebosim/sdformat#1333), which needs an existing leader.
+specified"), and so do MuJoCo ("required attribute missing: 'joint'") and
+Drake ("mimic element is missing the required 'joint' attribute"). urdfdom
+never checks the target, so `check_urdf`, Pinocchio and PyBullet load a mimic
+of a missing joint or of itself, and ROS tools then have nothing to follow:
+`joint_state_publisher` and MoveIt compute a follower's position from its
+leader. Drake refuses both ("mimic element specifies joint 'K' which does
+not exist", "Joints cannot mimic themselves"); MuJoCo refuses a joint that
+mimics itself ("element 'J' is repeated in equality constraint") and ignores
+a mimic of a missing joint with a misleading warning ("mimic requires
+revolute, continuous, or prismatic joints"). A mimic cycle loads in every
+consumer tried (Drake and MuJoCo add both constraints), but none of its
+joints is a leader: nothing drives them, they only constrain each other.
 
 ## How to fix
 Point `joint` at the leader joint (check its spelling); a leader must not

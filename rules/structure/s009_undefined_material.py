@@ -8,14 +8,16 @@ and Drake read links in order). Also reports a robot-level `<material>` with
 neither a `<color rgba>` nor a `<texture filename>`.
 
 ## Why is this bad?
-Drake refuses the model ("Material 'x' not previously defined, but has no
-color or texture information"). urdfdom logs "Material [x] color has no rgba"
-for an empty robot-level material, and for an undefined reference it silently
-creates an empty material, so RViz and Gazebo Sim draw the visual in a
-default colour instead of the one the author meant; when a later visual does
-define the name, urdfdom hands that visual the empty material too.
-urdf_parser_py reports "Material has neither a color nor texture". The model
-still loads in ROS, Gazebo, Pinocchio and PyBullet, so this is a warning.
+An empty robot-level material makes Drake refuse the model ("Material 'x'
+not previously defined, but has no color or texture information"), and
+urdfdom logs "Material [x] color has no rgba" then "Material [x] not defined
+in file". For a visual that refers to an undefined name urdfdom warns "link
+'L' material 'x' undefined" (`check_urdf` still ends with "Successfully
+Parsed XML") and gives the visual an empty material, so RViz and Gazebo Sim
+draw it in a default colour instead of the one the author meant; when a
+later visual does define the name, urdfdom hands that visual the empty
+material too. Drake, MuJoCo, PyBullet and Pinocchio load such a reference
+without a word, so this is a warning.
 
 ## How to fix
 Define the material once at robot level,

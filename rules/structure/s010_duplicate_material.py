@@ -12,10 +12,10 @@ urdfdom refuses the whole model with "material 'X' is not unique." (verified
 with `check_urdf` from urdfdom 3.0.1 and 6.0.0: "ERROR: Model Parsing the xml
 failed"), and with it ROS (`robot_state_publisher`, RViz, MoveIt), kdl_parser,
 Pinocchio and Gazebo's URDF converter. Drake refuses it as well ("Material 'X'
-was previously defined"). PyBullet warns "Duplicate material" and keeps the
-first definition, so a tool that keeps the last one shows other colours.
-Duplicates usually come from including a xacro file that defines its colours
-twice, or from two macros that each define the same colour.
+was previously defined"). PyBullet warns "Duplicate material" and loads it;
+MuJoCo and yourdfpy load it silently, so different tools show different
+colours. Duplicates usually come from including a xacro file that defines
+its colours twice, or from two macros that each define the same colour.
 
 ## How to fix
 Keep a single definition of each material name (move shared colours into one
@@ -31,7 +31,7 @@ from lxml import etree
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.structure import q
+from urdflint.model.structure import q, written_at
 
 
 @rule(
@@ -50,7 +50,7 @@ def check(doc: Document) -> Iterator[Hit]:
             yield Hit(
                 material,
                 f"material {q(name)} is defined again "
-                f"(first defined on line {first[name].sourceline})",
+                f"(first defined on {written_at(doc, first[name])})",
             )
         else:
             first[name] = material

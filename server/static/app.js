@@ -215,7 +215,7 @@
         el("th", { class: "group", colspan: "4", scope: "rowgroup" }, title[0].toUpperCase() + title.slice(1))));
       for (const f of group) {
         const code = el("td", { class: "code" },
-          el("a", { href: `/v1/rules/${encodeURIComponent(f.code)}`, target: "_blank", rel: "noopener" }, f.code),
+          el("a", { href: `/rules/${encodeURIComponent(f.code)}`, target: "_blank", rel: "noopener" }, f.code),
           el("span", { class: "rule-name" }, f.name));
         const problem = el("td", { class: "problem" }, el("p", { class: "message" }, f.message));
         if (f.fix) problem.append(el("p", { class: "fix" }, f.fix));

@@ -3,7 +3,8 @@
 ``live_server`` (session) yields the base URL of a server started with
 ``python -m urdflint serve --host 127.0.0.1 --port <free port>``; its per-request folders
 go to ``live_server_tmpdir`` so tests can check they are removed. ``running_server(env)``
-starts another one with environment overrides (limits) as a context manager.
+starts another one with environment overrides (limits) as a context manager;
+``start_server`` and ``stop_server`` for a test that watches the process itself.
 """
 
 from __future__ import annotations
@@ -38,49 +39,66 @@ def _log_tail(path: Path) -> str:
     return ""
 
 
+def start_server(
+    port: int,
+    env: Mapping[str, str] | None,
+    log: Path,
+    cwd: Path | None = None,
+    script: bool = False,
+) -> subprocess.Popen[bytes]:
+    """Start ``urdflint serve`` on ``port`` with ``env`` added, from ``cwd``; output to ``log``.
+
+    ``script``: through the ``urdflint`` console script, as the Docker image does (so the
+    current folder is not on the server's ``sys.path`` before uvicorn puts it there),
+    instead of ``python -m urdflint``.
+    """
+    full_env = {**os.environ, "PYTHONUNBUFFERED": "1", **(env or {})}
+    module = [sys.executable, "-m", "urdflint"]
+    launcher = [str(Path(sys.executable).parent / "urdflint")] if script else module
+    args = ["serve", "--host", "127.0.0.1", "--port", str(port), "--log-level", "warning"]
+    with open(log, "wb") as out:
+        return subprocess.Popen(
+            [*launcher, *args], env=full_env, cwd=cwd, stdout=out, stderr=subprocess.STDOUT
+        )
+
+
+def stop_server(proc: subprocess.Popen[bytes]) -> None:
+    """SIGTERM, then SIGKILL after 15 s."""
+    if proc.poll() is not None:
+        return
+    proc.terminate()
+    try:
+        proc.wait(15)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait(5)
+
+
 @contextlib.contextmanager
 def running_server(
-    env: Mapping[str, str] | None = None, log: Path | None = None, ready: bool = True
+    env: Mapping[str, str] | None = None,
+    log: Path | None = None,
+    ready: bool = True,
+    cwd: Path | None = None,
+    script: bool = False,
 ) -> Iterator[str]:
     """Start ``urdflint serve`` with ``env`` added to the environment; yield its base URL.
 
     Waits until ``/healthz`` answers (and ``/readyz`` when ``ready``: the lint workers are
-    up), and stops the server (SIGTERM, then SIGKILL) afterwards.
+    up), and stops the server (SIGTERM, then SIGKILL) afterwards. ``cwd`` and ``script``:
+    see :func:`start_server`.
     """
     port = free_port()
     base = f"http://127.0.0.1:{port}"
-    full_env = {**os.environ, "PYTHONUNBUFFERED": "1", **(env or {})}
     log = log or Path(os.environ.get("TMPDIR", "/tmp")) / f"urdflint-serve-{port}.log"
-    with open(log, "wb") as out:
-        proc = subprocess.Popen(
-            [
-                sys.executable,
-                "-m",
-                "urdflint",
-                "serve",
-                "--host",
-                "127.0.0.1",
-                "--port",
-                str(port),
-                "--log-level",
-                "warning",
-            ],
-            env=full_env,
-            stdout=out,
-            stderr=subprocess.STDOUT,
-        )
+    proc = start_server(port, env, log, cwd, script)
     try:
         _wait(proc, base, "/healthz", log)
         if ready:
             _wait(proc, base, "/readyz", log)
         yield base
     finally:
-        proc.terminate()
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(5)
+        stop_server(proc)
         with contextlib.suppress(OSError):
             log.unlink()
 

@@ -84,7 +84,7 @@ def test_raw_xml_gives_the_cli_document_plus_passed(client: TestClient) -> None:
 
 
 def test_broken_model_is_still_200_and_not_passed(client: TestClient) -> None:
-    r = xml(client, "<robot name='a'><link></robot>")
+    r = xml(client, "<robot name='a'><link name='b'></robot>")
     assert r.status_code == 200
     assert [f["code"] for f in r.json()["findings"]] == ["X001"]
     assert r.json()["passed"] is False
@@ -578,3 +578,29 @@ def test_page_has_a_strict_content_security_policy() -> None:
         assert "default-src 'none'" in policy and "script-src 'self'" in policy
         script = client.get("/static/app.js")
         assert script.status_code == 200 and script.headers["cache-control"] == "no-cache"
+
+
+def test_docs_and_rules_pages_are_served_offline() -> None:
+    from fastapi.testclient import TestClient
+    from urdflint.server.app import create_app
+
+    with TestClient(create_app()) as client:
+        for path, status in (("/docs", 200), ("/rules", 200), ("/rules/J001", 200)):
+            page = client.get(path)
+            assert page.status_code == status, path
+            assert page.headers["content-type"].startswith("text/html")
+            policy = page.headers["content-security-policy"]
+            assert "default-src 'none'" in policy and "script-src 'self'" in policy
+            assert "https://" not in page.text and "<script>" not in page.text  # same origin
+        assert client.get("/rules/missing-limit").status_code == 200  # a name works too
+        assert client.get("/rules/Z999").status_code == 404
+        assert client.get("/redoc").status_code == 404  # ReDoc would need a CDN: not served
+        docs = client.get("/docs").text
+        for asset in (
+            "/static/swagger-ui/swagger-ui-bundle.js",
+            "/static/swagger-ui/swagger-ui.css",
+        ):
+            assert asset in docs
+            assert client.get(asset).status_code == 200
+        assert "/static/rules.js" in client.get("/rules").text
+        assert client.get("/openapi.json").json()["paths"]["/v1/rules/{code}"]

@@ -74,6 +74,7 @@ def driver(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
     for flag in FLAGS:
         options.add_argument(flag)
     options.add_argument(f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}")
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})  # CSP reports, for one
     browser = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
     browser.set_page_load_timeout(60)
     try:
@@ -179,7 +180,7 @@ def test_broken_arm_findings_model_and_tree(driver: Any, base_url: str, tmp_path
     assert groups == sorted(groups, key=["error", "warning", "info"].index)  # errors first
     assert all(r["group"] == r["severity"] for r in found)
     j001 = next(r for r in found if r["code"] == "J001")
-    assert j001["href"] == "/v1/rules/J001" and j001["name"] == "missing-limit"
+    assert j001["href"] == "/rules/J001" and j001["name"] == "missing-limit"
     assert j001["element"] == j001["shownElement"] == "/robot/joint[@name='shoulder']"
     assert j001["message"] == "revolute joint 'shoulder' has no <limit>; urdfdom refuses the model"
     assert j001["fix"] and "<limit" in j001["fix"]
@@ -318,3 +319,85 @@ def test_hostile_names_stay_text(driver: Any, base_url: str) -> None:
     assert HOSTILE in {item["name"] for item in picture["links"]}
     assert HOSTILE in {item["name"] for item in picture["joints"]}
     assert picture["scripts"] == 0
+
+
+# -- the rules pages and the API documentation --------------------------------------------------
+
+
+def same_origin_only(driver: Any, base_url: str) -> list[str]:
+    """Every resource the page loaded (asserted to come from this server)."""
+    urls = list(
+        driver.execute_script("return performance.getEntriesByType('resource').map((e) => e.name)")
+    )
+    assert urls and all(url.startswith(base_url) for url in urls), urls
+    return urls
+
+
+def test_the_rules_page_is_a_table_linking_each_explanation(driver: Any, base_url: str) -> None:
+    httpx = pytest.importorskip("httpx")
+    catalogue = httpx.get(f"{base_url}/v1/rules").json()["rules"]
+    driver.get(f"{base_url}/")
+    driver.find_element(By.LINK_TEXT, "Rules").click()
+    WebDriverWait(driver, 20).until(
+        lambda d: len(d.find_elements(By.CSS_SELECTOR, "#rules tbody tr")) == len(catalogue)
+    )
+    assert driver.current_url == f"{base_url}/rules"
+    script = """
+      return Array.from(document.querySelectorAll('#rules tbody tr'), (tr) => ({
+        code: tr.dataset.code, href: tr.querySelector('td.code a').getAttribute('href'),
+        name: tr.querySelector('td.name').textContent,
+        severity: tr.querySelector('.sev').textContent,
+        summary: tr.querySelector('td.summary').textContent}));
+    """
+    shown = driver.execute_script(script)
+    assert [r["code"] for r in shown] == [r["code"] for r in catalogue]
+    j001 = next(r for r in shown if r["code"] == "J001")
+    assert j001["href"] == "/rules/J001" and j001["name"] == "missing-limit"
+    assert j001["severity"] == "error" and "<limit>" in j001["summary"]  # `code` as text
+    same_origin_only(driver, base_url)
+
+    driver.find_element(By.ID, "filter").send_keys("missing-limit")
+    visible = driver.find_elements(By.CSS_SELECTOR, "#rules tbody tr:not([hidden])")
+    assert [row.get_attribute("data-code") for row in visible] == ["J001"]
+    visible[0].find_element(By.CSS_SELECTOR, "td.code a").click()
+    WebDriverWait(driver, 20).until(lambda d: d.find_element(By.ID, "rule").is_displayed())
+    assert driver.current_url == f"{base_url}/rules/J001"
+    assert driver.find_element(By.ID, "rule-heading").text == "J001 missing-limit"
+    assert driver.find_element(By.ID, "rule-severity").text == "error"
+    doc = driver.find_element(By.ID, "rule-doc")
+    headings = [h.text for h in doc.find_elements(By.TAG_NAME, "h2")]
+    assert headings[:3] == ["What it does", "Why is this bad?", "How to fix"]
+    assert doc.find_elements(By.CSS_SELECTOR, "ul li") and doc.find_elements(
+        By.CSS_SELECTOR, "p code"
+    )
+    assert "<robot" in doc.find_element(By.CSS_SELECTOR, "pre code").text  # examples as text
+    assert not doc.find_elements(By.CSS_SELECTOR, "script, img, robot")
+    same_origin_only(driver, base_url)
+
+
+def test_an_unknown_rule_page_says_so(driver: Any, base_url: str) -> None:
+    driver.get(f"{base_url}/rules/Z999")
+    WebDriverWait(driver, 20).until(lambda d: d.find_element(By.ID, "error").is_displayed())
+    assert "unknown rule 'Z999'" in driver.find_element(By.ID, "error").text
+    assert not driver.find_element(By.ID, "rule").is_displayed()
+
+
+def test_the_api_docs_render_offline(driver: Any, base_url: str) -> None:
+    driver.get(f"{base_url}/")
+    driver.find_element(By.LINK_TEXT, "API").click()
+    WebDriverWait(driver, 30).until(
+        lambda d: d.find_elements(By.CSS_SELECTOR, "#swagger-ui .opblock-summary-path")
+    )
+    paths = {
+        e.get_attribute("data-path")
+        for e in driver.find_elements(By.CSS_SELECTOR, "#swagger-ui .opblock-summary-path")
+    }
+    assert {"/v1/check", "/v1/rules", "/readyz"} <= paths
+    urls = same_origin_only(driver, base_url)
+    assert any(url.endswith("/static/swagger-ui/swagger-ui-bundle.js") for url in urls)
+    refused = [
+        entry["message"]
+        for entry in driver.get_log("browser")
+        if "Content Security Policy" in entry["message"]
+    ]
+    assert refused == []

@@ -20,6 +20,10 @@ from urdflint.model.finding import Call, Finding, Severity
 log = logging.getLogger(__name__)
 
 LIBRARY_FAMILIES = frozenset({"X", "U"})  # what a xacro library file (no <link>) gets
+# A file that is not well-formed is checked on the tree libxml2 recovers: its findings say so.
+# Pinocchio reads the file itself, not that tree, so the physics family does not run.
+RECOVERED = " (from the part of the file that could be read after the X001 error)"
+RECOVERED_SKIPS = frozenset({"P"})
 EXTRAS = optional.EXTRAS
 
 
@@ -95,7 +99,9 @@ def lint_document(doc: Document, settings: Settings) -> Result:
     ran: list[str] = []
     for code in sorted(enabled):
         rule = rules[code]
-        if rule.requires_robot and not doc.ok:
+        if rule.requires_robot and doc.root is None:
+            continue
+        if doc.recovered and rule.family in RECOVERED_SKIPS:
             continue
         if doc.library and rule.family not in LIBRARY_FAMILIES:
             continue
@@ -113,7 +119,7 @@ def lint_document(doc: Document, settings: Settings) -> Result:
             ran.append(code)  # a crashed rule is reported by its U001 error instead
 
     directives: list[suppress.Directive] = []
-    if doc.ok:
+    if doc.root is not None:
         directives, malformed = suppress.parse(doc.robot)
         if "U003" in enabled:
             ran.append("U003")
@@ -122,7 +128,9 @@ def lint_document(doc: Document, settings: Settings) -> Result:
     findings: list[Finding] = []
     for rule, hit in raw:
         covering = (
-            [d for d in directives if d.covers(rule.code, hit.element, doc.root)] if doc.ok else []
+            [d for d in directives if d.covers(rule.code, hit.element, doc.root)]
+            if doc.root is not None
+            else []
         )
         if covering:
             for directive in covering:
@@ -181,6 +189,8 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     configured = settings.severity.get(rule.code)
     severity = configured or hit.severity or rule.severity
     shown, message = hit.path or doc.path, hit.message
+    if doc.recovered and rule.code != "X001":
+        message += RECOVERED
     trace: tuple[Call, ...] = ()
     anchor = element if element is not None else doc.root  # robot-level: the <robot> tag
     if doc.origin is not None and anchor is not None and not hit.line:

@@ -1,10 +1,13 @@
-"""Gazebo's view of link masses: the rigid bodies of fixed-joint lumping, and their boxes.
+"""Fixed-joint lumping, and what each target does with welded and with massless links.
 
 sdformat's fixed-joint lumping builds rigid bodies (a link plus every link merged
-into it through fixed joints). Gazebo, Pinocchio and MuJoCo (``fusestatic``) all
-simulate those lumped bodies, so degenerate but physically possible values (point
-masses, tiny frames) are judged on the body, while impossible ones are reported on
-the link itself. The maths are in :mod:`urdflint.model.inertia`.
+into it through fixed joints). Gazebo and Pinocchio simulate those lumped bodies, and
+MuJoCo fuses static bodies too (``fusestatic``, on by default for URDF). So degenerate
+but physically possible values (point masses, tiny frames) are judged on the body.
+Impossible values (a negative mass or moment, a tensor that is not positive definite or
+breaks A + B >= C) are always reported on the link itself; :func:`impossible_severity`
+says how bad they are for the selected targets. :func:`massless_verdict` says what the
+targets do with a link that has no mass. The maths are in :mod:`urdflint.model.inertia`.
 """
 
 from __future__ import annotations
@@ -13,17 +16,15 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 from weakref import WeakKeyDictionary
 
-from urdflint.model import optional
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import preserved_joints
-from urdflint.model.geometry import Shape, shapes
+from urdflint.model.geometry import shapes
 from urdflint.model.inertia import (
     IDENTITY,
     TINY_MOMENT,
     ZERO,
     Mat,
     Vec,
-    aabb,
     apply,
     eigenvalues,
     judge,
@@ -31,99 +32,22 @@ from urdflint.model.inertia import (
     read_inertial,
     rotate,
     rpy_matrix,
-    transform_box,
 )
-from urdflint.model.providers import provided
-from urdflint.model.targets import gazebo_label
+from urdflint.model.targets import DEFAULT_TARGETS, GAZEBO, gazebo_label
 from urdflint.model.values import vector
 
 if TYPE_CHECKING:
-    from lxml import etree
-
     from urdflint.model.document import Document
 
-GAZEBO_MASSLESS = 1e-6  # sdformat: math::equal(mass, 0.0), whose default tolerance is 1e-6
+# sdformat before 9.10.1 / 12.7.2 / 13.5.0: math::equal(mass, 0.0), tolerance 1e-6; later: mass <= 0
+GAZEBO_MASSLESS = 1e-6
 MOVABLE = frozenset({"revolute", "continuous", "prismatic", "floating", "planar"})
-
-
-# -- meshes (loaded through the run's mesh cache; trimesh only when a link has a mesh) ---------
-
-
-def meshes_readable() -> bool:
-    """Whether meshes can be loaded here (trimesh installed): the I rules' mesh variants."""
-    return optional.available("trimesh")
-
-
-def mesh_box(doc: Document, shape: Shape) -> tuple[Vec, Vec] | None:
-    """The axis-aligned box, in the link frame, of a mesh shape after scale and origin.
-
-    ``None`` when the mesh does not resolve, cannot be read, or is not in metres (C004-C006).
-    """
-    bounds = provided("mesh_bounds", doc)(shape)
-    if bounds is None:
-        return None
-    return transform_box(bounds, rpy_matrix(shape.rpy), shape.xyz)  # type: ignore[arg-type]
-
-
-def geometry_box(
-    doc: Document, link: etree._Element, tags: tuple[str, ...] = ("collision",)
-) -> tuple[Vec, Vec] | None:
-    """Union box of the link's shapes under ``tags``, meshes included when they can be read.
-
-    Like :func:`primitive_box`, but a mesh contributes its loaded bounding box. ``None``
-    unless every shape is readable (without trimesh: unless all are primitives).
-    """
-    boxes: list[tuple[Vec, Vec]] = []
-    readable = None
-    for tag in tags:
-        owners = link.findall(tag)
-        found = shapes(link, tag)
-        if len(found) != len(owners):
-            return None
-        for shape in found:
-            if shape.kind == "mesh":
-                if readable is None:
-                    readable = meshes_readable()
-                box = mesh_box(doc, shape) if readable else None
-            else:
-                box = aabb(shape)
-            if box is None:
-                return None
-            boxes.append(box)
-    if not boxes:
-        return None
-    lo = tuple(min(b[0][i] for b in boxes) for i in range(3))
-    hi = tuple(max(b[1][i] for b in boxes) for i in range(3))
-    return lo, hi  # type: ignore[return-value]
-
-
-def has_mesh(link: etree._Element, tags: tuple[str, ...] = ("collision", "visual")) -> bool:
-    return any(s.kind == "mesh" for tag in tags for s in shapes(link, tag))
-
-
-def body_box(
-    doc: Document, body: str, tags: tuple[str, ...] = ("collision", "visual")
-) -> tuple[Vec, Vec] | None:
-    """Union box, in the body's frame, of the geometry of every link lumped into ``body``.
-
-    Links without any visual or collision add nothing; ``None`` when one member's
-    geometry cannot be read or its origin is unreadable.
-    """
-    b = bodies(doc)
-    boxes: list[tuple[Vec, Vec]] = []
-    for name, rot, pos in b.members(body):
-        link = doc.link_map.get(name)
-        if link is None or not any(link.element.findall(tag) for tag in tags):
-            continue
-        box = geometry_box(doc, link.element, tags)
-        if box is None or rot is None or pos is None:
-            return None
-        boxes.append(transform_box(box, rot, pos))
-    if not boxes:
-        return None
-    lo = tuple(min(x[0][i] for x in boxes) for i in range(3))
-    hi = tuple(max(x[1][i] for x in boxes) for i in range(3))
-    return lo, hi  # type: ignore[return-value]
+# Targets that lump a welded link into its parent before anything checks its inertia:
+# sdformat's ReduceFixedJoints sums the inertials, and only the lumped link is validated.
+# MuJoCo fuses static bodies too, but validates every body before (mujoco 4.0: "inertia
+# must satisfy A + B >= C", naming the welded link); Drake and PyBullet keep welded links.
+LUMPING = frozenset(GAZEBO)
+MUJOCO_DENSITY = 1000.0  # kg/m^3, MuJoCo's default geom density
 
 
 # -- Gazebo's lumped bodies ---------------------------------------------------------------
@@ -277,16 +201,75 @@ def bodies(doc: Document) -> Bodies:
     return found
 
 
+def impossible_severity(doc: Document, name: str) -> Severity:
+    """How bad a physically impossible value on link ``name`` is for the selected targets.
+
+    An error, except on a link welded to its parent by a fixed joint when every selected
+    target lumps it before checking (Gazebo Classic and Sim): then only the lumped body
+    counts, and the value is a warning while that body is sound. MuJoCo, Drake and
+    PyBullet check each link on its own, so for them it is always an error.
+    """
+    b = bodies(doc)
+    if not b.merged(name) or not selected(doc) <= LUMPING:
+        return Severity.ERROR
+    return Severity.WARNING if b.body_is_sound(name) else Severity.ERROR
+
+
+def selected(doc: Document) -> frozenset[str]:
+    """The document's targets (the default ones when none is selected)."""
+    return doc.targets or frozenset(DEFAULT_TARGETS)
+
+
+def welded_note(doc: Document, name: str, severity: Severity) -> str:
+    """The clause a message adds when :func:`impossible_severity` lowered a finding."""
+    if severity is Severity.ERROR:
+        return ""
+    body = bodies(doc).body_of(name)
+    return f" (welded: {gazebo_label(doc.targets)} lumps it into '{body}', which stays valid)"
+
+
 @dataclass(frozen=True, slots=True)
 class Verdict:
-    """What Gazebo does with a link whose own mass is zero, and how bad that is."""
+    """What the selected targets do with a link that has no mass, and how bad that is.
+
+    ``kind`` is ``drop`` (Gazebo drops the link and its subtree), ``merge`` (Gazebo merges
+    its geometry, without mass, into its parent), ``infer`` (MuJoCo makes up a mass from its
+    collision geometry), ``fuse`` (MuJoCo does so and fuses it into its parent) or
+    ``refuse`` (MuJoCo refuses the model); several, joined by ``+``.
+    """
 
     severity: Severity
     consequence: str
+    kind: str = ""
 
 
-def massless_verdict(doc: Document, name: str) -> Verdict | None:
-    """Gazebo's handling of link ``name`` when it has no mass of its own (``None``: harmless)."""
+def massless_verdict(doc: Document, name: str, declared: bool = True) -> Verdict | None:
+    """What the selected targets do with link ``name``, which has no mass of its own.
+
+    ``declared``: the link has an ``<inertial>`` (with mass 0), not none at all.
+    ``None`` when no target loses anything.
+    """
+    found: list[Verdict | None] = []
+    targets = selected(doc)
+    if targets & LUMPING:
+        found.append(gazebo_verdict(doc, name))
+    if "mujoco" in targets:
+        found.append(mujoco_verdict(doc, name, declared))
+    verdicts = [v for v in found if v is not None]
+    if len(verdicts) < 2:
+        return verdicts[0] if verdicts else None
+    return Verdict(
+        max(v.severity for v in verdicts),
+        "; ".join(v.consequence for v in verdicts),
+        "+".join(v.kind for v in verdicts),
+    )
+
+
+def gazebo_verdict(doc: Document, name: str) -> Verdict | None:
+    """Gazebo's handling of link ``name`` when it has no mass of its own (``None``: harmless).
+
+    A root link whose lumped body has no mass at all is I013's (the whole model is lost).
+    """
     b = bodies(doc)
     graph = b.graph
     label = gazebo_label(doc.targets)
@@ -294,7 +277,7 @@ def massless_verdict(doc: Document, name: str) -> Verdict | None:
     if b.merged(name):
         if link.visuals or link.collisions:
             merged = f"{label} merges it into '{b.body_of(name)}' as geometry without mass"
-            return Verdict(Severity.INFO, merged)
+            return Verdict(Severity.INFO, merged, "merge")
         return None
     total = b.mass(name)
     joint = graph.parent_joint(name)
@@ -302,9 +285,9 @@ def massless_verdict(doc: Document, name: str) -> Verdict | None:
         return None
     below = graph.subtree(name)[1:]
     if joint is None:
-        if not below or name != graph.root:
+        if not below or name != graph.root or total <= 0:
             return None
-        return Verdict(Severity.WARNING, f"{label} drops it and with it the whole model")
+        return Verdict(Severity.WARNING, f"{label} drops it and with it the whole model", "drop")
     if below:
         lost = f"the {len(below)} link{'s' if len(below) > 1 else ''} below it"
         consequence = f"{label} drops it, its joint '{joint.name}' and {lost}"
@@ -314,10 +297,93 @@ def massless_verdict(doc: Document, name: str) -> Verdict | None:
         j.type in MOVABLE for n in below for j in graph.parent_joints.get(n, [])
     )
     if moving:
-        return Verdict(Severity.ERROR, consequence)
+        return Verdict(Severity.ERROR, consequence, "drop")
     if any(doc.link_map[n].visuals or doc.link_map[n].collisions for n in [name, *below]):
-        return Verdict(Severity.WARNING, consequence)
+        return Verdict(Severity.WARNING, consequence, "drop")
     return None
+
+
+def mujoco_verdict(doc: Document, name: str, declared: bool = True) -> Verdict | None:
+    """MuJoCo's handling of link ``name`` without mass (``None``: harmless).
+
+    MuJoCo's URDF import (observed with mujoco 4.0) makes the root link and every link
+    welded to it static (fused into the world, mass irrelevant), fuses links under fixed
+    joints into their parent, computes the inertia of a link *without* ``<inertial>``
+    from its collision geometry at 1000 kg/m³ (``inertiafromgeom="auto"``; visuals are
+    discarded), and refuses a moving body left without mass.
+    """
+    graph = doc.graph
+    joint = graph.parent_joint(name)
+    if joint is None or _static(doc, name):
+        return None
+    infer = mujoco_compiler(doc, "inertiafromgeom", "auto")
+    guessed = _collides(doc, name) and (infer == "true" or (infer == "auto" and not declared))
+    if joint.type == "fixed":
+        if not guessed:
+            return None
+        fused = (
+            f"MuJoCo gives it the mass of its collision geometry "
+            f"({MUJOCO_DENSITY:.0f} kg/m³) and fuses it into '{joint.parent}'"
+        )
+        return Verdict(Severity.INFO, fused, "fuse")
+    if guessed:
+        made_up = (
+            "MuJoCo makes up its mass and inertia from its collision geometry "
+            f"({MUJOCO_DENSITY:.0f} kg/m³)"
+        )
+        return Verdict(Severity.WARNING, made_up, "infer")
+    if _fused_mass(doc, name, infer):
+        return None
+    refused = (
+        'MuJoCo refuses the model ("mass and inertia of moving bodies must be larger '
+        'than mjMINVAL")'
+    )
+    return Verdict(Severity.ERROR, refused, "refuse")
+
+
+def mujoco_compiler(doc: Document, attribute: str, default: str) -> str:
+    """An attribute of ``<mujoco><compiler>`` in the URDF (MuJoCo's own extension)."""
+    for compiler in doc.robot.findall("mujoco/compiler"):
+        value = compiler.get(attribute)
+        if value is not None:
+            return value.strip().lower()
+    return default
+
+
+def _collides(doc: Document, name: str) -> bool:
+    """Whether link ``name`` has a collision shape MuJoCo can compute an inertia from."""
+    return any(shape.valid for shape in shapes(doc.link_map[name].element, "collision"))
+
+
+def _static(doc: Document, name: str) -> bool:
+    """Whether only fixed joints lie between link ``name`` and its root."""
+    seen = {name}
+    joint = doc.graph.parent_joint(name)
+    while joint is not None:
+        if joint.type != "fixed" or joint.parent is None or joint.parent in seen:
+            return False
+        seen.add(joint.parent)
+        joint = doc.graph.parent_joint(joint.parent)
+    return True
+
+
+def _fused_mass(doc: Document, name: str, infer: str) -> bool:
+    """Whether a link welded below ``name`` gives MuJoCo's fused body a mass."""
+    graph, b = doc.graph, bodies(doc)
+    stack = [j.child for j in graph.child_joints.get(name, []) if j.type == "fixed"]
+    seen = {name}
+    while stack:
+        child = stack.pop()
+        if child is None or child in seen or child not in doc.link_map:
+            continue
+        seen.add(child)
+        inertial = b.inertials.get(child)
+        if _collides(doc, child) and (infer == "true" or (infer == "auto" and inertial is None)):
+            return True
+        if inertial is not None and inertial.mass is not None and inertial.mass > 0:
+            return True
+        stack.extend(j.child for j in graph.child_joints.get(child, []) if j.type == "fixed")
+    return False
 
 
 def _add(a: Vec, b: Vec) -> Vec:

@@ -1,9 +1,9 @@
-"""Hardened parsing and the :class:`Document` every rule reads.
+"""The :class:`Document` every rule reads.
 
-One parse per file. The parser never expands entities, never loads a DTD,
-never touches the network and keeps libxml2's size and depth limits; comments
-stay in the tree because they carry suppressions. A document with a DOCTYPE or
-entity references is refused (X002), never expanded.
+One parse per file (:mod:`urdflint.model.parsing`: hardened, never expands entities
+or loads a DTD; a document with a DOCTYPE or entity references is refused (X002),
+never expanded). A file that is not well-formed XML still gets its rules run on the
+tree libxml2 recovers, when that is a ``<robot>`` (``Document.recovered``).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from lxml import etree
 
 from urdflint.model.finding import Call
 from urdflint.model.graph import Graph
+from urdflint.model.parsing import MAX_BYTES, XACRO_NS, XmlProblem, local_tag, make_parser, parse
 from urdflint.model.positions import Lines, attribute_offset, tag_start
 from urdflint.model.providers import provided
 
@@ -24,6 +25,20 @@ if TYPE_CHECKING:  # provided by the engine at run time, see provide()
     from urdflint.engine.config import Settings
     from urdflint.engine.context import Context
     from urdflint.sources.resolve import Resolver
+
+__all__ = [  # the parsing names are re-exported: the rest of urdflint imports them from here
+    "MAX_BYTES",
+    "XACRO_NS",
+    "Document",
+    "Joint",
+    "Link",
+    "Origin",
+    "Origins",
+    "XmlProblem",
+    "children",
+    "local_tag",
+    "make_parser",
+]
 
 
 @dataclass(frozen=True, slots=True)
@@ -40,51 +55,10 @@ class Origin:
     trace: tuple[Call, ...] = ()  # the macro calls that produced it, innermost first
 
 
-MAX_BYTES = 64 * 2**20
-XACRO_NS = "http://www.ros.org/wiki/xacro"
-
-
 class Origins(Protocol):
     """Where the elements of an expanded document are written (the xacro source map)."""
 
     def __call__(self, el: etree._Element, attribute: str | None = None) -> Origin | None: ...
-
-
-@dataclass(frozen=True, slots=True)
-class XmlProblem:
-    """Why a document is not a usable ``<robot>``: X001 (syntax) or X002 (not a robot)."""
-
-    code: str
-    message: str
-    line: int = 1
-    column: int = 1
-    path: str | None = None  # xacro: the (shown) file the problem is in, when not the main file
-
-
-def make_parser() -> etree.XMLParser:
-    # One parser per parse: lxml parsers are not safe to share across threads.
-    return etree.XMLParser(
-        resolve_entities=False,
-        no_network=True,
-        load_dtd=False,
-        dtd_validation=False,
-        huge_tree=False,
-        remove_comments=False,
-        remove_pis=True,
-        remove_blank_text=False,
-    )
-
-
-def local_tag(el: etree._Element) -> str:
-    """``link`` for ``<link>``, ``xacro:macro`` for a namespaced xacro element."""
-    tag = el.tag
-    if not isinstance(tag, str):
-        return ""
-    if tag.startswith("{"):
-        uri, _, local = tag[1:].partition("}")
-        prefix = el.prefix or ("xacro" if "xacro" in uri else uri)
-        return f"{prefix}:{local}"
-    return tag
 
 
 def children(el: etree._Element, tag: str | None = None) -> list[etree._Element]:
@@ -139,7 +113,9 @@ class Document:
 
     ``problem`` is set when the file is not well-formed XML (X001) or not a
     URDF robot (X002); then ``ok`` is false and only the rules that declare
-    ``requires_robot=False`` run.
+    ``requires_robot=False`` run, unless the tree libxml2 recovered from a file
+    that is not well-formed is a ``<robot>``: then ``recovered`` is true, ``robot``
+    is that tree and the engine runs the rules on it too, marking their findings.
     """
 
     def __init__(
@@ -165,63 +141,24 @@ class Document:
         self.problem: XmlProblem | None = problem
         self.root: etree._Element | None = None
         self.library = library  # an included xacro file: only document-level rules run
+        self.recovered = False  # root is libxml2's recovery of a file with an X001 problem
+        self.undeclared_prefixes: tuple[str, ...] = ()  # used without xmlns: (X012)
+        self.default_namespace: str | None = None  # <robot xmlns="..."> (X002 warning)
         if problem is None:
             self._parse()
 
     # -- parsing -----------------------------------------------------------------
 
     def _parse(self) -> None:
-        if len(self.source) > MAX_BYTES:
-            self.problem = XmlProblem(
-                "X001", f"file is {len(self.source) / 2**20:.0f} MiB, over the 64 MiB limit"
-            )
-            return
-        try:
-            root = etree.fromstring(self.source, make_parser())
-        except etree.XMLSyntaxError as exc:
-            if b"<!DOCTYPE" in self.source or b"<!ENTITY" in self.source:
-                # e.g. an entity bomb libxml2 stopped: refuse it as a DOCTYPE, not a typo
-                self.problem = self._doctype_problem()
-                return
-            line, column = exc.position if exc.position else (1, 1)
-            message = (exc.msg or str(exc)).strip()
-            message = message.split(", line ")[0] if ", line " in message else message
-            self.problem = XmlProblem("X001", message, max(line, 1), max(column, 1))
-            return
-        except ValueError as exc:  # e.g. an encoding declaration lxml refuses
-            self.problem = XmlProblem("X001", str(exc))
-            return
-        tree = root.getroottree()
-        if tree.docinfo.internalDTD is not None or tree.docinfo.doctype:
-            self.problem = self._doctype_problem()
-            return
-        entity = next(root.iter(etree.Entity), None)
-        if entity is not None:
-            self.problem = XmlProblem(
-                "X002", f"document uses the entity reference {entity.text}", entity.sourceline or 1
-            )
-            return
-        if root.tag != "robot":
-            self.problem = XmlProblem(
-                "X002", f"root element is <{local_tag(root)}>, not <robot>", root.sourceline or 1
-            )
-            return
-        self.root = root
-
-    def _doctype_problem(self) -> XmlProblem:
-        return XmlProblem(
-            "X002",
-            "document has a DOCTYPE declaration; URDF never needs one and it is not expanded",
-            self._line_of(b"<!DOCTYPE"),
-        )
-
-    def _line_of(self, needle: bytes) -> int:
-        index = self.source.find(needle)
-        return self.source.count(b"\n", 0, index) + 1 if index >= 0 else 1
+        parsed = parse(self.source)
+        self.root, self.problem, self.recovered = parsed.root, parsed.problem, parsed.recovered
+        self.undeclared_prefixes = parsed.undeclared
+        self.default_namespace = parsed.default_namespace
 
     @property
     def ok(self) -> bool:
-        return self.root is not None
+        """A usable ``<robot>`` from a well-formed file (not a recovered tree)."""
+        return self.root is not None and not self.recovered
 
     @property
     def robot(self) -> etree._Element:

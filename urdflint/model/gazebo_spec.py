@@ -152,13 +152,21 @@ def keys_of(gazebo: etree._Element) -> list[etree._Element]:
     return [c for c in children(gazebo) if isinstance(c.tag, str) and not c.tag.startswith("{")]
 
 
-def resolved_keys(doc: Document) -> Iterator[tuple[etree._Element, frozenset[str], str]]:
-    """``(key element, scopes, owner)`` for every key of every block whose reference
-    resolves (blocks naming nothing are G001's)."""
+UNRESOLVED = frozenset({LINK, JOINT})  # a dangling reference was meant for a link or a joint
+
+
+def checked_scopes(doc: Document, gazebo: etree._Element) -> frozenset[str]:
+    """The scopes a block's contents are checked against: its reference's, or, when the
+    reference names nothing (G001), a link and a joint alike, so that the contents are
+    still checked in the same run and fixing the reference reveals no second round."""
+    return scopes_of(doc, gazebo) or UNRESOLVED
+
+
+def block_keys(doc: Document) -> Iterator[tuple[etree._Element, frozenset[str], str]]:
+    """``(key element, scopes, owner)`` for every key of every block (see
+    :func:`checked_scopes` for blocks whose reference names nothing)."""
     for gazebo in doc.gazebo:
-        scopes = scopes_of(doc, gazebo)
-        if scopes is None:
-            continue
+        scopes = checked_scopes(doc, gazebo)
         owner = describe(doc, gazebo)
         for el in keys_of(gazebo):
             yield el, scopes, owner
@@ -182,8 +190,11 @@ def describe(doc: Document, gazebo: etree._Element) -> str:
     ref = gazebo.get("reference")
     if not ref:
         return "the robot"
-    kind = "link" if ref in doc.link_map else "joint" if ref in doc.joint_map else "reference"
-    return f"{kind} {ref!r}"
+    if ref in doc.link_map:
+        return f"link {ref!r}"
+    if ref in doc.joint_map:
+        return f"joint {ref!r}"
+    return f"the undefined reference {ref!r}"
 
 
 def homes(name: str) -> list[str]:

@@ -1,9 +1,9 @@
 """Inertia maths shared by the I rules.
 
 Pure Python on purpose (no numpy): reading a link's ``<inertial>``, a closed-form
-eigen-solver for symmetric 3x3 tensors, and the inertia and bounding box of
-primitive shapes. The rigid bodies that sdformat's fixed-joint lumping builds, and
-the boxes of their geometry, are in :mod:`urdflint.model.bodies`.
+eigen-solver for symmetric 3x3 tensors, the inertia and bounding box of primitive
+shapes, and the boxes of a link's geometry (meshes through the run's mesh cache).
+The rigid bodies that fixed-joint lumping builds are in :mod:`urdflint.model.bodies`.
 """
 
 from __future__ import annotations
@@ -12,11 +12,15 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from urdflint.model import optional
 from urdflint.model.geometry import Shape, shapes
+from urdflint.model.providers import provided
 from urdflint.model.values import number, vector
 
 if TYPE_CHECKING:
     from lxml import etree
+
+    from urdflint.model.document import Document
 
 Vec = tuple[float, float, float]
 Mat = tuple[Vec, Vec, Vec]
@@ -237,3 +241,58 @@ def times(x: float) -> str:
     """A ratio for messages, to two significant digits: ``15``, ``1000``, ``3.1e+11``."""
     rounded = float(f"{x:.2g}")
     return f"{rounded:.0f}" if rounded < 1e6 else f"{rounded:.1e}"
+
+
+# -- meshes (loaded through the run's mesh cache; trimesh only when a link has a mesh) ---------
+
+
+def meshes_readable() -> bool:
+    """Whether meshes can be loaded here (trimesh installed): the I rules' mesh variants."""
+    return optional.available("trimesh")
+
+
+def mesh_box(doc: Document, shape: Shape) -> tuple[Vec, Vec] | None:
+    """The axis-aligned box, in the link frame, of a mesh shape after scale and origin.
+
+    ``None`` when the mesh does not resolve, cannot be read, or is not in metres (C004-C006).
+    """
+    bounds = provided("mesh_bounds", doc)(shape)
+    if bounds is None:
+        return None
+    return transform_box(bounds, rpy_matrix(shape.rpy), shape.xyz)  # type: ignore[arg-type]
+
+
+def geometry_box(
+    doc: Document, link: etree._Element, tags: tuple[str, ...] = ("collision",)
+) -> tuple[Vec, Vec] | None:
+    """Union box of the link's shapes under ``tags``, meshes included when they can be read.
+
+    Like :func:`primitive_box`, but a mesh contributes its loaded bounding box. ``None``
+    unless every shape is readable (without trimesh: unless all are primitives).
+    """
+    boxes: list[tuple[Vec, Vec]] = []
+    readable = None
+    for tag in tags:
+        owners = link.findall(tag)
+        found = shapes(link, tag)
+        if len(found) != len(owners):
+            return None
+        for shape in found:
+            if shape.kind == "mesh":
+                if readable is None:
+                    readable = meshes_readable()
+                box = mesh_box(doc, shape) if readable else None
+            else:
+                box = aabb(shape)
+            if box is None:
+                return None
+            boxes.append(box)
+    if not boxes:
+        return None
+    lo = tuple(min(b[0][i] for b in boxes) for i in range(3))
+    hi = tuple(max(b[1][i] for b in boxes) for i in range(3))
+    return lo, hi  # type: ignore[return-value]
+
+
+def has_mesh(link: etree._Element, tags: tuple[str, ...] = ("collision", "visual")) -> bool:
+    return any(s.kind == "mesh" for tag in tags for s in shapes(link, tag))

@@ -1,11 +1,13 @@
-"""The URDF element table read by X004, X005 and X007.
+"""The URDF element table read by X004, X005, X007 and X013.
 
 For every context (``robot``, ``link``, ``joint``, ``origin``...) it lists the
 child elements URDF defines there and the attributes each element carries,
 with their kind (a string, one number, 3 numbers, 4 numbers). Known extension
 blocks (``<gazebo>``, ``<transmission>``, PyBullet's ``<contact>``...) are
-*opaque*: accepted, but their contents belong to other rule families.
-:func:`walk` visits the elements of a document against this table.
+*opaque*: accepted, but their contents belong to other rule families; known
+extension attributes (PyBullet's ``<collision group>``...) are in
+:data:`EXTENSION_ATTRS`. :func:`walk` visits the elements of a document against
+this table.
 """
 
 from __future__ import annotations
@@ -74,7 +76,8 @@ SPECS: dict[str, Spec] = {
         {"name": S},
     ),
     "inertial": Spec(known("origin", "mass", "inertia")),
-    "origin": Spec(attrs={"xyz": V3, "rpy": V3}),
+    # quat_xyzw: URDF 1.1 (urdfdom 5.1), instead of rpy
+    "origin": Spec(attrs={"xyz": V3, "rpy": V3, "quat_xyzw": Kind.RGBA}),
     "mass": Spec(attrs=numbers("value")),
     "inertia": Spec(attrs=numbers("ixx", "ixy", "ixz", "iyy", "iyz", "izz")),
     "visual": Spec(known("origin", "geometry", "material"), {"name": S}),
@@ -111,6 +114,17 @@ SPECS: dict[str, Spec] = {
     "safety_controller": Spec(
         attrs=numbers("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")
     ),
+}
+
+# Attributes URDF does not define that a consumer or a widespread exporter writes on
+# purpose: accepted by X013, with who reads or writes them.
+EXTENSION_ATTRS: dict[str, dict[str, str]] = {
+    # PyBullet's UrdfParser: collision filter group and mask, and a concave triangle mesh
+    "collision": dict.fromkeys(("group", "mask", "concave"), "PyBullet"),
+    "link": {"drake_ignore": "Drake"},  # Drake skips a link with drake_ignore="true"
+    # franka_description's joint friction parameters, on every Panda/FR3 joint
+    "dynamics": dict.fromkeys(("D", "K", "mu_coulomb", "mu_viscous"), "franka_description"),
+    "geometry": {"name": "sr_description"},  # a label the Shadow Hand description writes
 }
 
 XACRO_URIS = ("ros.org/wiki/xacro",)

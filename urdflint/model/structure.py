@@ -1,8 +1,10 @@
 """Helpers shared by the structure (S), transmission (T) and collision (C) rules.
 
-Name suggestions for misspelt references, quoting names for messages, the
-links welded together by fixed joints (one rigid body once Gazebo lumps fixed
-joints), and which children of a ``<transmission>`` name joints.
+Name suggestions for misspelt references, quoting names for messages, where an
+element was written (for "first defined on ..."), the links welded together by
+fixed joints (one rigid body once Gazebo lumps fixed joints), and what the
+children of a ``<transmission>`` are: which name joints, which actuators, which
+elements its parsers read.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from urdflint.model.document import children, local_tag
 if TYPE_CHECKING:
     from lxml import etree
 
+    from urdflint.model.document import Document
     from urdflint.model.graph import Graph
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
@@ -34,6 +37,30 @@ TRANSMISSION_JOINT_REFS: dict[str, tuple[str, ...]] = {
     "passive_joint": ("name",),
     "simulated_actuated_joint": ("name", "passive_actuated_joint"),
 }
+
+
+# Direct children of a robot-level <transmission> that a parser reads: ros_control's
+# TransmissionParser (<type>, <joint>, <actuator>) and the pr2_mechanism_model
+# transmissions: SimpleTransmission and PR2BeltCompensatorTransmission (a
+# <mechanicalReduction> and a <compensator> beside <joint>/<actuator>), WristTransmission
+# (<leftActuator>, <rightActuator>, <flexJoint>, <rollJoint>), PR2GripperTransmission
+# (<gap_joint>, <passive_joint>, <simulated_actuated_joint>, <use_simulated_gripper_joint>).
+TRANSMISSION_CHILDREN = frozenset(
+    {"type", "joint", "actuator", "mechanicalReduction", "compensator"}
+    | {"leftActuator", "rightActuator", "flexJoint", "rollJoint"}
+    | {"gap_joint", "passive_joint", "simulated_actuated_joint", "use_simulated_gripper_joint"}
+)
+# What ros_control's transmission loaders read inside <joint> and <actuator>; vendors'
+# loaders read more (PAL's <saturationLower>, ...), so only near misses of these count.
+TRANSMISSION_PART_CHILDREN: dict[str, frozenset[str]] = {
+    "joint": frozenset(
+        {"hardwareInterface", "role", "mechanicalReduction", "offset"}
+        | {"ignoreTransmissionAbsoluteEncoder"}
+    ),
+    "actuator": frozenset({"hardwareInterface", "role", "mechanicalReduction"}),
+}
+# Elements that name a motor: ros_control's <actuator>, WristTransmission's two actuators.
+ACTUATOR_TAGS = ("actuator", "leftActuator", "rightActuator")
 
 
 def closest(name: str, candidates: Iterable[str | None]) -> str | None:
@@ -88,3 +115,20 @@ def transmission_joint_refs(
 def q(name: str | None) -> str:
     """A name quoted for a message, or ``(unnamed)`` when the attribute is missing."""
     return repr(name) if name is not None else "(unnamed)"
+
+
+def written_at(doc: Document, el: etree._Element) -> str:
+    """Where ``el`` is written, for "first defined on ..." messages.
+
+    ``line 12`` in a plain URDF (the line of its start tag); in an expanded xacro
+    document, the file and line of the source (``arm.xacro:9``, ``line 9`` when it is the
+    checked file itself) and the macro call that produced it.
+    """
+    origin = doc.origin(el) if doc.origin is not None else None
+    if origin is None:
+        return f"line {doc.start_of(el)[0]}"
+    where = f"line {origin.line}" if origin.path == doc.path else f"{origin.path}:{origin.line}"
+    if origin.trace:
+        call = origin.trace[0]
+        where += f", in macro `{call.macro}` called from {call.path}:{call.line}"
+    return where

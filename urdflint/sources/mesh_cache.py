@@ -5,6 +5,10 @@ first time a rule asks for it at a given scale, and keeps the answer for the
 whole run: C005, C006, C007, I007 and I008 share one load per (file, scale).
 Nothing here raises on a bad file: what trimesh cannot read becomes
 :attr:`MeshInfo.error`.
+
+A Collada file's ``<asset><unit meter="..."/>`` is applied on top of the URDF scale, as
+Gazebo (``ColladaLoader::Load`` scales the mesh by it), RViz (``getMeshUnitRescale``) and
+PyBullet do; trimesh only records it, so the vertices it returns are in the file's units.
 """
 
 from __future__ import annotations
@@ -19,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint.model import optional
-from urdflint.sources.mesh_formats import TRIMESH_TYPES, format_name
+from urdflint.sources.mesh_formats import TRIMESH_TYPES, collada_unit, format_name
 
 Vec = tuple[float, float, float]
 Mat = tuple[Vec, Vec, Vec]
@@ -61,6 +65,7 @@ class MeshInfo:
     error: str | None = None
     unsupported: bool = False
     size: int = 0  # bytes on disk
+    unit: float = 1.0  # metres per file unit (a Collada <unit meter>), already applied
     _mesh: Any = field(default=None, repr=False, compare=False)
     _memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
 
@@ -204,17 +209,19 @@ class MeshCache:
             )
         if size == 0:
             return fail("the file is empty")
+        unit = 1.0
         if ext == "dae":
             if not optional.available("collada"):
                 return fail("reading Collada needs pycollada (pip install pycollada)", True)
             if _has_doctype(path):
                 return fail("the Collada file declares a DOCTYPE or entities; it was not read")
+            unit = collada_unit(path)
         try:
             self.loads += 1
             self.bytes += size
             with _quiet_numpy():
                 mesh = trimesh_load(path, TRIMESH_TYPES[ext], self._resolver(path))
-                return _describe(mesh, path, ext, scale, size)
+                return _describe(mesh, path, ext, scale, size, unit)
         except Exception as exc:  # any parse failure becomes a finding, never a crash
             return fail(f"trimesh could not read it ({_one_line(exc)})")
         except RecursionError as exc:  # pragma: no cover - deeply nested scenes
@@ -241,7 +248,9 @@ def _has_doctype(path: Path) -> bool:
     return b"<!DOCTYPE" in head or b"<!ENTITY" in head
 
 
-def _describe(mesh: Any, path: Path, ext: str, scale: Vec, size: int) -> MeshInfo:
+def _describe(
+    mesh: Any, path: Path, ext: str, scale: Vec, size: int, unit: float = 1.0
+) -> MeshInfo:
     import numpy as np
 
     faces, vertices = len(mesh.faces), len(mesh.vertices)
@@ -251,13 +260,23 @@ def _describe(mesh: Any, path: Path, ext: str, scale: Vec, size: int) -> MeshInf
         return MeshInfo(
             path, ext, faces, vertices, size=size, error="it has NaN or infinite vertices"
         )
-    if scale != (1.0, 1.0, 1.0):
+    factors = (scale[0] * unit, scale[1] * unit, scale[2] * unit)
+    if factors != (1.0, 1.0, 1.0):
         matrix = np.eye(4)
-        matrix[0, 0], matrix[1, 1], matrix[2, 2] = scale
+        matrix[0, 0], matrix[1, 1], matrix[2, 2] = factors
         mesh.apply_transform(matrix)  # flips the winding for a mirroring scale
     lo, hi = mesh.bounds
     return MeshInfo(
-        path, ext, faces, vertices, _vec(lo), _vec(hi), _vec(hi - lo), size=size, _mesh=mesh
+        path,
+        ext,
+        faces,
+        vertices,
+        _vec(lo),
+        _vec(hi),
+        _vec(hi - lo),
+        size=size,
+        unit=unit,
+        _mesh=mesh,
     )
 
 

@@ -1,21 +1,26 @@
-"""Mesh references and their resolution; the meshes they name, loaded once per run.
+"""Mesh and texture references and their resolution; the meshes they name, loaded once per run.
 
-The pure-Python half (:func:`references`, :func:`resolved`, and the format tables
-in :mod:`urdflint.sources.mesh_formats`) serves the static rules C004, C008 and C009
-and never imports trimesh. :func:`load` hands a reference to the run's
-:class:`~urdflint.sources.mesh_cache.MeshCache`, which reads each file through
-trimesh once per (file, scale).
+The pure-Python half (:func:`references`, :func:`textures`, :func:`resolved`,
+:func:`unresolved` and the format tables in :mod:`urdflint.sources.mesh_formats`) serves
+the static rules C004, C008, C009 and C012 and never imports trimesh. :func:`load` hands a
+reference to the run's :class:`~urdflint.sources.mesh_cache.MeshCache`, which reads each
+file through trimesh once per (file, scale).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 from weakref import WeakKeyDictionary
 
+from urdflint.model.finding import Severity
 from urdflint.model.geometry import Shape, read_shape
+from urdflint.model.structure import q
 from urdflint.model.values import has_xacro
 from urdflint.sources.mesh_cache import MeshCache, MeshInfo
+from urdflint.sources.resolve import SCHEME_RE
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -28,6 +33,8 @@ __all__ = [
     "MIN_EXTENT",
     "PART_MAX",
     "PART_MIN",
+    "FileProblem",
+    "FileRef",
     "MeshCache",
     "MeshInfo",
     "MeshRef",
@@ -36,6 +43,8 @@ __all__ = [
     "resolved",
     "scale_hint",
     "suspicious_size",
+    "textures",
+    "unresolved",
 ]
 
 Vec = tuple[float, float, float]
@@ -96,6 +105,33 @@ def references(doc: Document) -> list[MeshRef]:
     return found
 
 
+@dataclass(frozen=True, slots=True)
+class FileRef:
+    """A file a description names: ``what`` describes it for messages."""
+
+    element: etree._Element
+    uri: str
+    what: str  # "visual mesh 'a.stl' of link 'arm'"
+
+
+def textures(doc: Document) -> list[FileRef]:
+    """Every ``<texture filename>`` of a robot-level or a visual's ``<material>``, in
+    document order (empty and xacro filenames are skipped)."""
+    found: list[FileRef] = []
+    owners = [(m, f"material {q(m.get('name'))}") for m in doc.materials]
+    for link in doc.links:
+        for visual in link.visuals:
+            material = visual.find("material")
+            if material is not None:
+                owners.append((material, f"a visual of link {q(link.name)}"))
+    for material, owner in owners:
+        for texture in material.findall("texture"):
+            uri = (texture.get("filename") or "").strip()
+            if uri and not has_xacro(uri):
+                found.append(FileRef(texture, uri, f"texture {uri!r} of {owner}"))
+    return found
+
+
 def resolved(doc: Document, uri: str) -> Resolved:
     """Where ``uri`` points for this document (cached per document)."""
     cache = _RESOLVED.setdefault(doc, {})
@@ -133,3 +169,98 @@ def scale_hint(extent: float) -> list[tuple[float, str]]:
 def suspicious_size(info: MeshInfo) -> bool:
     """Whether the largest extent after scale is outside 1 mm .. 10 m (C006's finding)."""
     return info.error is None and not (MIN_EXTENT <= info.largest <= MAX_EXTENT)
+
+
+# -- files that do not resolve (C004 for meshes, C012 for textures) ---------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class FileProblem:
+    """A finding about a file reference: the rule turns it into a hit as it is."""
+
+    element: etree._Element
+    message: str
+    severity: Severity | None = None  # None: the rule's own (error)
+    package_fix: bool = False  # the fix is to say where packages live
+
+
+def unresolved(doc: Document, refs: list[FileRef], noun: str) -> Iterator[FileProblem]:
+    """What is wrong with each reference that does not lead to a file.
+
+    An error when the package (or the URDF's folder) was found and the file is not in
+    it; a warning when the package was not found while this run can resolve packages;
+    otherwise one info note per problem (unknown package, unsupported scheme) naming how
+    many ``noun`` references it leaves unchecked.
+    """
+    answers = [(ref, resolved(doc, ref.uri)) for ref in refs]
+    configured = packages_configured(doc) or any(
+        a.found and package_of(ref.uri) is not None for ref, a in answers
+    )
+    unchecked: dict[str, list[FileRef]] = {}  # problem -> references, for the notes
+    looked: dict[str, tuple[str, ...]] = {}
+    for ref, answer in answers:
+        if answer.found:
+            continue
+        problem = answer.problem or "the file was not found"
+        if problem.startswith("no file at"):
+            last = Path(answer.tried[-1]) if answer.tried else None
+            hint = nearby(answer.path or last)
+            yield FileProblem(ref.element, f"{ref.what} is missing: {problem}{hint}")
+        elif problem.startswith("package ") and configured:
+            tried = f" (looked in: {'; '.join(answer.tried)})" if answer.tried else ""
+            message = f"{ref.what} cannot be found: {problem}{tried}"
+            yield FileProblem(ref.element, message, Severity.WARNING, package_fix=True)
+        elif "outside the allowed folder" in problem:
+            message = f"{ref.what} is not readable: {problem}"
+            yield FileProblem(ref.element, message, Severity.WARNING)
+        else:  # nothing says where packages live, an unsupported scheme, no URDF folder
+            unchecked.setdefault(problem, []).append(ref)
+            looked.setdefault(problem, answer.tried)
+    for problem, group in unchecked.items():
+        count = f"its {len(group)} {noun} references are" if len(group) > 1 else f"its {noun} is"
+        tried = f" (looked in: {'; '.join(looked[problem])})" if looked[problem] else ""
+        yield FileProblem(
+            group[0].element,
+            f"{problem}{tried}, so {count} not checked (first: {group[0].what})",
+            Severity.INFO,
+            package_fix=problem.startswith("package "),
+        )
+
+
+def packages_configured(doc: Document) -> bool:
+    """Whether this run has been told where packages live."""
+    resolver = doc.resolver
+    return bool(resolver.package_paths or resolver.ros_paths or resolver.ament)
+
+
+def package_of(uri: str) -> str | None:
+    """``NAME`` of a ``package://NAME/...`` URI."""
+    scheme = SCHEME_RE.match(uri.strip())
+    if not scheme or scheme.group(1).lower() != "package":
+        return None
+    parts = [p for p in uri.strip()[scheme.end() :].split("/") if p]
+    return parts[0] if parts else None
+
+
+def nearby(path: Path | None) -> str:
+    """``; the folder has 'x.dae'`` when a file differs only by case or extension."""
+    if path is None:
+        return ""
+    folder = path.parent
+    try:
+        if not folder.is_dir():
+            return f"; the folder {folder} does not exist"
+        names = sorted(p.name for p in folder.iterdir() if p.is_file())
+    except OSError:
+        return ""
+    if len(names) > 5000:
+        return ""
+    wanted = path.name.lower()
+    same_case = [n for n in names if n.lower() == wanted]
+    if same_case:
+        return f"; the folder has {same_case[0]!r} (the case differs)"
+    stem = path.stem.lower()
+    other = [n for n in names if Path(n).stem.lower() == stem and not n.lower().endswith(".mtl")]
+    if other:
+        return f"; the folder has {', '.join(repr(n) for n in other[:3])}"
+    return ""

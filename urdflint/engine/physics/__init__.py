@@ -4,32 +4,32 @@
 and only by the P rules and ``urdflint info``; Pinocchio (and numpy) are imported
 inside the functions, never at module level.
 
-**Never hand Pinocchio a broken document.** Before building, :func:`blocker` runs
-the static rules whose error-level findings make urdfdom (which Pinocchio uses)
-refuse the model, or, worse, read it into something other than what the file
-says. The first such finding stops the build; P001 then names it:
+**Build, then judge.** urdflint hands Pinocchio every usable document, with two
+exceptions, and judges the result (verified with pin 4.1, the PyPI build):
 
-- refused: X003 (missing names), X009 (robot version), S001/S002 (duplicate
-  names), S003 (undefined link), S004 (several roots), S006 (unknown joint type),
-  S007 (no parent/child), S008 (bad mimic reference or mimic cycle), S010
-  (duplicate material), J001 errors (no ``<limit>`` or no effort/velocity),
-  J010 errors (negative effort or velocity: "min_effort > max_effort"),
-  J013 (``<dynamics>``/``<safety_controller>`` without their required attribute);
-- misread: X004/X005 (a malformed number or vector in an ``<inertial>`` or
-  ``<joint>`` makes urdfdom drop the inertial, so the mass turns into 0 and the
-  COM into NaN), X008 errors on values (an unexpanded ``${...}`` in a number),
-  S005 (a link with two parent joints is built twice and its mass counted twice),
-  J007 (a zero axis becomes a NaN joint) and I012 (an incomplete ``<inertial>``
-  is dropped silently).
+- never built: S005 (a link with two parent joints, or a loop). urdfdom does not
+  notice it, and Pinocchio then refuses the model ("Model does not have any body
+  named X"), silently builds it without one of the joints, or crashes the process
+  (a link that is its own parent: SIGSEGV). Nor are trees deeper than
+  :data:`MAX_DEPTH` or larger than :data:`MAX_LINKS` (:attr:`Physics.limited`).
+- refused: Pinocchio's own reason (urdfdom's messages, captured from the C++
+  output) is translated into a sentence naming the element. When a static error
+  explains it (:data:`BLOCKING`: missing names, duplicates, an undefined link, a
+  missing ``<limit>``, a negative effort...), the sentence cites it.
+- built but misread (:data:`MISREAD`): a malformed or incomplete ``<inertial>``
+  (X004, X005, X008 and I012 inside it: urdfdom drops the tensor, and the mass
+  too when ``<mass>`` or the origin is at fault) and a zero axis on a revolute,
+  continuous or prismatic joint (J007: the joint cannot move, its entry of the
+  mass matrix is 0). The numbers are not used; P001 says what Pinocchio misreads.
+- built and read as written: everything else, even when a static rule reports
+  an error (an S008 mimic that names no joint: Pinocchio ignores ``<mimic>``;
+  negative masses, inverted limits...). The centre of mass is not computed when
+  a mass is negative or the total is not positive (Pinocchio would return NaN or
+  garbage).
 
 Findings of X003, X004, X005 and X008 inside ``<visual>``, ``<collision>`` or a
-``<material>`` do not block: urdfdom skips that geometry and the dynamics are
-intact. Nor do leftover xacro elements (an unexpanded macro call or include):
-urdfdom ignores them, so what is written is read correctly, and X008 reports
-that the model may be incomplete (P003 catches the missing mass). Everything
-else (negative masses, inverted limits...) is built; the centre of mass is not
-computed when a mass is negative or the total is not positive (Pinocchio would
-return NaN or garbage).
+``<material>`` are never cited: urdfdom skips that geometry and the dynamics are
+intact; nor are leftover xacro elements (X008 says the model may be incomplete).
 
 **The fixed-base pitfall.** The model is built with a fixed base (the URDF's
 root link is the universe frame), so its joints and degrees of freedom are the
@@ -43,15 +43,17 @@ some valid trees, e.g. when the mimicking joint comes before its leader in
 urdfdom's order); their position follows their leader (``multiplier * q + offset``)
 and they do not count as degrees of freedom.
 
-The package: :func:`build` and its guards (the static pre-check, the size limits) here;
-the :class:`Physics` result in ``result``; Pinocchio's refusals translated in ``errors``;
-the numbers of a built model in ``compute``; the configuration ``q`` in ``configuration``.
+The package: :func:`build` and its guards here; the static findings it cites in
+``blockers``; the :class:`Physics` result in ``result``; Pinocchio's refusals
+translated in ``errors``; the numbers of a built model in ``compute``; the
+configuration ``q`` in ``configuration``.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from urdflint.engine.physics.blockers import HARMLESS_PLACES, VALUE_RULES, blocker, misread
 from urdflint.engine.physics.compute import compute, urdf_masses
 from urdflint.engine.physics.configuration import configuration, joint_label
 from urdflint.engine.physics.errors import captured_output, messages, translate
@@ -65,11 +67,8 @@ from urdflint.engine.physics.result import (
     close,
     unverifiable,
 )
-from urdflint.model.finding import Severity
 
 if TYPE_CHECKING:
-    from lxml import etree
-
     from urdflint.model.document import Document
 
 __all__ = [
@@ -79,6 +78,8 @@ __all__ = [
     "MASS_RTOL",
     "MAX_DEPTH",
     "MAX_LINKS",
+    "MISREAD",
+    "NEVER_BUILT",
     "VALUE_RULES",
     "Blocker",
     "Physics",
@@ -92,11 +93,13 @@ __all__ = [
     "depth",
     "joint_label",
     "messages",
+    "misread",
     "translate",
     "unverifiable",
     "urdf_masses",
 ]
 
+# Static errors that explain a refusal (cited by P001 when Pinocchio refuses the model).
 BLOCKING = (
     "X003",
     "X004",
@@ -118,65 +121,12 @@ BLOCKING = (
     "J013",
     "I012",
 )
-# value-level rules whose findings in these places leave the dynamics intact
-VALUE_RULES = frozenset({"X003", "X004", "X005", "X008"})
-HARMLESS_PLACES = frozenset({"visual", "collision", "material"})
+# Never handed to Pinocchio: it refuses, misreads or crashes (pin 4.1: SIGSEGV on a self-parent).
+NEVER_BUILT = ("S005",)
+# Built, but read differently from the file (see the module docstring).
+MISREAD = ("X004", "X005", "X008", "I012", "J007")
 MAX_DEPTH = 200  # real robots: at most 21 (tiago); Pinocchio's parser crashes near 4000
 MAX_LINKS = 2000  # real robots: at most 96 (eve_r3); 3000 take 0.6 s to parse, 20000 take 2 min
-
-
-# -- static pre-check ---------------------------------------------------------------------
-
-
-def blocker(doc: Document) -> Blocker | None:
-    """The first error-level static finding that makes Pinocchio refuse or misread the model."""
-    from urdflint.engine import registry
-    from urdflint.engine.linter import stamp
-
-    rules = registry.load_rules()
-    found: list[Blocker] = []
-    for code in BLOCKING:
-        rule = rules.get(code)
-        if rule is None:
-            continue
-        try:
-            if rule.options:
-                hits = list(rule.check(doc, doc.settings.options(code)))
-            else:
-                hits = list(rule.check(doc))
-        except Exception:  # a crashing rule is U001's business, not a reason to block
-            continue
-        for hit in hits:
-            if (hit.severity or rule.severity) is not Severity.ERROR:
-                continue
-            if code in VALUE_RULES and _harmless_place(hit.element):
-                continue
-            if code == "X008" and _is_xacro_element(hit.element):
-                continue
-            finding = stamp(doc, rule, hit, doc.settings)
-            where = f"line {finding.line}"
-            if finding.path != doc.path:
-                where = f"{finding.path}:{finding.line}"
-            found.append(Blocker(code, rule.name, hit.message, hit.element, finding.line, where))
-            break
-    if not found:
-        return None
-    return min(found, key=lambda b: (b.line, b.code))
-
-
-def _is_xacro_element(el: etree._Element | None) -> bool:
-    from urdflint.model.schema import is_xacro
-
-    return el is not None and isinstance(el.tag, str) and el.tag[:1] == "{" and is_xacro(el)
-
-
-def _harmless_place(el: etree._Element | None) -> bool:
-    node = el
-    while node is not None:
-        if node.tag in HARMLESS_PLACES:
-            return True
-        node = node.getparent()
-    return False
 
 
 # -- building -------------------------------------------------------------------------------
@@ -204,6 +154,33 @@ def build(doc: Document) -> Physics:
     name, root = doc.robot.get("name"), doc.graph.root
     static = urdf_masses(doc)
     base = Physics(False, name=name, root=root, urdf_mass=sum(static.values()))
+    stopped = _not_built(doc, base)
+    if stopped is not None:
+        return stopped
+    try:
+        import pinocchio as pin
+    except ImportError:
+        base.missing = True
+        base.reason = "Pinocchio is not installed (pip install 'urdflint[dynamics]')"
+        return base
+    with captured_output() as output:
+        try:
+            model = pin.buildModelFromXML(_xml(doc))
+            error = None
+        except Exception as exc:  # Pinocchio raises ValueError, RuntimeError, std::exception
+            error = str(exc) or type(exc).__name__
+    if error is not None:
+        return _refused(doc, base, error, "".join(output))
+    wrong = misread(doc, model, MISREAD)
+    if wrong is not None:
+        base.blocker, base.element = wrong[0], wrong[0].element
+        base.reason, base.misread = wrong[1], True
+        return base
+    return compute(doc, pin, model, base, static)
+
+
+def _not_built(doc: Document, base: Physics) -> Physics | None:
+    """``base`` with the reason, when urdflint does not hand Pinocchio this document."""
     if doc.library:
         base.reason = "a xacro library file: no <link> after expansion"
         return base
@@ -223,30 +200,28 @@ def build(doc: Document) -> Physics:
             f"more than {MAX_LINKS} links (its URDF parser takes quadratic time: minutes)"
         )
         return base
-    found = blocker(doc)
-    if found is not None:
-        base.blocker, base.element = found, found.element
+    loop = blocker(doc, NEVER_BUILT)
+    if loop is not None:
+        base.blocker, base.element = loop, loop.element
         base.reason = (
-            f"the model was not given to Pinocchio because of {found.code} {found.name} "
-            f"on {found.where}: {found.message}"
+            f"the model was not given to Pinocchio because of {loop.code} {loop.name} on "
+            f"{loop.where}: {loop.message}; urdfdom does not notice it, and Pinocchio then "
+            "refuses the model, builds it without one of the joints, or crashes"
         )
         return base
-    try:
-        import pinocchio as pin
-    except ImportError:
-        base.missing = True
-        base.reason = "Pinocchio is not installed (pip install 'urdflint[dynamics]')"
-        return base
-    with captured_output() as output:
-        try:
-            model = pin.buildModelFromXML(_xml(doc))
-            error = None
-        except Exception as exc:  # Pinocchio raises ValueError, RuntimeError, std::exception
-            error = str(exc) or type(exc).__name__
-    if error is not None:
-        base.reason, base.element = translate(doc, error, "".join(output))
-        return base
-    return compute(doc, pin, model, base, static)
+    return None
+
+
+def _refused(doc: Document, base: Physics, error: str, output: str) -> Physics:
+    """``base`` with Pinocchio's refusal translated, citing the static error behind it."""
+    base.reason, base.element = translate(doc, error, output)
+    cause = blocker(doc, BLOCKING)
+    if cause is not None:
+        base.blocker = cause
+        base.reason += f" (see {cause.code} {cause.name} on {cause.where})"
+        if base.element is None:
+            base.element = cause.element
+    return base
 
 
 def depth(doc: Document) -> int:

@@ -36,7 +36,7 @@ def compute(
     result.dof = int(model.nv) - mimic_nv
     result.naive_mass = float(pin.computeTotalMass(model))
     result.mass = float(sum(model.inertias[i].mass for i in range(model.njoints)))
-    result.link_masses = _link_masses(model)
+    result.link_masses = link_masses(model)
     result.universe_links = [
         f.name
         for f in model.frames
@@ -77,7 +77,7 @@ def _mimics(doc: Document, names: set[str]) -> dict[str, tuple[str, float, float
     return found
 
 
-def _link_masses(model: Any) -> dict[str, float]:
+def link_masses(model: Any) -> dict[str, float]:
     """Each link's own mass as Pinocchio holds it.
 
     A link behind a fixed joint keeps its inertia on that joint's frame; a link on a

@@ -42,10 +42,12 @@ class QProblem:
 class Physics:
     """What Pinocchio made of one document.
 
-    ``built`` is false when the static rules blocked the build (``blocker``), when
-    Pinocchio refused the model (``reason`` translated, ``element`` named), when the
-    model is too deep or too large for Pinocchio (``limited``) or when Pinocchio is
-    not installed (``missing``). Masses are in kg, positions in metres
+    ``built`` is false when a static error stopped the build (``blocker``: a kinematic
+    loop), when Pinocchio refused the model (``reason`` translated, ``element`` named,
+    ``blocker`` the static error that explains it, if any), when Pinocchio built it but
+    misread it (``misread``: ``reason`` says what, ``blocker`` why), when the model is too
+    deep or too large for Pinocchio (``limited``) or when Pinocchio is not installed
+    (``missing``). Masses are in kg, positions in metres
     in the root link's frame.
     """
 
@@ -55,6 +57,7 @@ class Physics:
     blocker: Blocker | None = None
     missing: bool = False
     limited: bool = False  # too large for Pinocchio: urdflint's limit, not a defect
+    misread: bool = False  # built, but read differently from the file (``reason`` says how)
     name: str | None = None
     root: str | None = None
     dof: int = 0
