@@ -19,6 +19,10 @@ The severity says how sure the finding is:
   covers: the package was not found and nothing tells urdflint where packages
   live, or the URI uses a scheme urdflint does not resolve (`model://`,
   `http://`). Those meshes are simply not checked.
+- warning, once per file: `package://box.stl`, a package name with no path in
+  it. ROS's resource_retriever (RViz, MoveIt) takes `box.stl` as the package
+  name and Gazebo finds no model of that name, while PyBullet strips the scheme
+  and reads `box.stl` next to the URDF: the file works in one simulator only.
 
 ## Why is this bad?
 A missing mesh breaks every consumer differently: RViz and MoveIt show an

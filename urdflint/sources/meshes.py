@@ -20,7 +20,7 @@ from urdflint.model.geometry import Shape, read_shape
 from urdflint.model.structure import q
 from urdflint.model.values import has_xacro
 from urdflint.sources.mesh_cache import MeshCache, MeshInfo
-from urdflint.sources.resolve import SCHEME_RE
+from urdflint.sources.resolve import NO_PACKAGE_PATH, SCHEME_RE
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -222,7 +222,7 @@ def unresolved(doc: Document, refs: list[FileRef], noun: str) -> Iterator[FilePr
         yield FileProblem(
             group[0].element,
             f"{problem}{tried}, so {count} not checked (first: {group[0].what})",
-            Severity.INFO,
+            Severity.WARNING if problem == NO_PACKAGE_PATH else Severity.INFO,
             package_fix=problem.startswith("package "),
         )
 

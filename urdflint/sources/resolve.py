@@ -20,6 +20,13 @@ from pathlib import Path
 NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 SCHEME_RE = re.compile(r"^([a-zA-Z][a-zA-Z0-9+.-]*):")
 MAX_PACKAGE_XML_BYTES = 1 << 20
+# package://mesh.stl: resource_retriever (RViz, robot_state_publisher users) and Gazebo take
+# "mesh.stl" as the package name and find no file; PyBullet strips the scheme and reads it
+# relative to the URDF.
+NO_PACKAGE_PATH = (
+    "the package:// URI has a package name but no path inside it (package://PACKAGE/FILE);"
+    " ROS and Gazebo cannot resolve it, PyBullet reads it relative to the URDF"
+)
 
 
 @dataclass(frozen=True, slots=True)
@@ -165,6 +172,8 @@ class Resolver:
         if not parts:
             return Resolved(uri, None, (), "the package:// URI names no package")
         name, inside = parts[0], parts[1:]
+        if not inside:
+            return Resolved(uri, None, (), NO_PACKAGE_PATH)
         folder, tried = self.find_package(name)
         if folder is None:
             return Resolved(uri, None, tried, f"package {name!r} was not found")
