@@ -481,3 +481,11 @@ def test_collada_up_axis_is_not_applied_like_gazebo(tmp_path: Path) -> None:
     path = collada_box(tmp_path / "y_up.dae", (10.0, 20.0, 40.0), "0.01")
     path.write_text(path.read_text().replace("Z_UP", "Y_UP"))
     assert MeshCache().load(path).extents == approx((0.1, 0.2, 0.4))
+
+
+def test_collada_with_a_broken_texture_binding_is_read_without_its_materials() -> None:
+    pytest.importorskip("collada")
+    path = FIXTURES / "rules" / "C005" / "meshes" / "broken_texture_binding.dae"
+    info = MeshCache().load(path)
+    assert info.error is None and info.faces == 4
+    assert info.hi == pytest.approx((0.1, 0.1, 0.1), rel=1e-6)  # node transform applied

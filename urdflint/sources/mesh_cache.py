@@ -221,6 +221,8 @@ class MeshCache:
             self.bytes += size
             with _quiet_numpy():
                 mesh = trimesh_load(path, TRIMESH_TYPES[ext], self._resolver(path))
+                if ext == "dae" and len(mesh.faces) == 0:
+                    mesh = _collada_geometries(path) or mesh
                 return _describe(mesh, path, ext, scale, size, unit)
         except Exception as exc:  # any parse failure becomes a finding, never a crash
             return fail(f"trimesh could not read it ({_one_line(exc)})")
@@ -237,6 +239,33 @@ class _Failure:
 
     def __call__(self, reason: str, unsupported: bool = False) -> MeshInfo:
         return MeshInfo(self.path, self.ext, error=reason, unsupported=unsupported)
+
+
+def _collada_geometries(path: Path) -> Any:
+    """The Collada file read again without its material bindings.
+
+    pycollada drops a scene node whose material binding names a missing texture surface
+    ("Missing surface ..."), and trimesh then sees an empty scene, while PyBullet, Gazebo
+    and RViz still draw the geometry. Materials do not change the shape: without the
+    bindings the scene, its node transforms included, reads whole. ``None`` when that
+    gives no triangles either.
+    """
+    import io
+
+    import trimesh
+    from lxml import etree
+
+    from urdflint.model.document import make_parser
+
+    root = etree.fromstring(path.read_bytes(), make_parser())
+    bindings = list(root.iter("{*}bind_material", "bind_material"))
+    if not bindings:
+        return None
+    for el in bindings:
+        el.getparent().remove(el)
+    data = etree.tostring(root)
+    mesh = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh", skip_materials=True)
+    return mesh if len(mesh.faces) else None
 
 
 def _has_doctype(path: Path) -> bool:
