@@ -264,7 +264,7 @@ def _collada_geometries(path: Path) -> Any:
     for el in bindings:
         el.getparent().remove(el)
     data = etree.tostring(root)
-    mesh = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh", skip_materials=True)
+    mesh: Any = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh", skip_materials=True)
     return mesh if len(mesh.faces) else None
 
 
