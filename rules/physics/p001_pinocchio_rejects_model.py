@@ -66,6 +66,8 @@ from urdflint.model.finding import Severity
     fix="Fix the element the message names; Pinocchio reads the URDF through urdfdom.",
 )
 def check(doc: Document) -> Iterator[Hit]:
+    if not doc.links:
+        return  # S011 reports the robot without links; Pinocchio's refusal adds nothing
     physics = doc.physics
     if physics.built or physics.missing or physics.reason is None:
         return

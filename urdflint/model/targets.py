@@ -12,7 +12,7 @@ TARGETS: dict[str, str] = {
     "gz-sim": "Gazebo Sim (Fortress and later, sdformat >= 11.2): URDF colours become SDF "
     "materials, massless links are dropped with a warning",
     "mujoco": "MuJoCo's URDF import: STL and OBJ meshes only (no Collada), inertia must "
-    "satisfy A + B >= C, mimic and transmissions are ignored",
+    "satisfy A + B >= C, transmissions are ignored, mimic becomes an equality constraint",
 }
 DEFAULT_TARGETS: tuple[str, ...] = ("gazebo-classic",)
 
