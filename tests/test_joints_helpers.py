@@ -112,8 +112,9 @@ def mimic_robot(follower: str, leader: str) -> str:
             "floating",
             "error",
         ),  # "mimic element specifies joint ... which does not exist"
-        ("fixed", "revolute", "error"),  # "which has 0 DOF cannot mimic ... which has 1 DOF"
-        ("fixed", "planar", "error"),  # "which has 0 DOF cannot mimic ... which has 3 DOF"
+        # a welded follower cannot move anyway: a warning until a Drake target exists
+        ("fixed", "revolute", "warning"),  # "which has 0 DOF cannot mimic ... which has 1 DOF"
+        ("fixed", "planar", "warning"),  # "which has 0 DOF cannot mimic ... which has 3 DOF"
         ("planar", "planar", "warning"),  # "The mimic element will be ignored."
         ("fixed", "fixed", None),  # ignored with a warning; nothing moves on either side
         ("revolute", "hinge", None),  # S006's

@@ -32,7 +32,12 @@ word, but the follower does not follow:
   the offset.
 A mimic of a fixed joint is usually left over from turning a moving joint
 into a fixed one (a gripper finger welded for a demo) while its followers
-still point at it.
+still point at it. A moving follower of a fixed (or floating, planar) leader
+is an error: the follower moves freely in every consumer. A fixed follower
+of a moving leader is a warning: nothing is lost (the follower cannot move
+anyway) except in Drake, which refuses the model; reduced models made by
+welding the joints of a full robot (e.g. example-robot-data's
+talos_reduced) carry such mimics.
 
 ## How to fix
 Point the mimic at the moving joint that drives the follower, or remove the
@@ -91,10 +96,11 @@ def _judge(follower: str, leader: str, name: str, target: str) -> tuple[str, Sev
             f"joint {name} mimics {leader} joint {target}, which has {_dof(leader)}",
             Severity.ERROR,
         )
-    if leader in SINGLE:
+    if leader in SINGLE:  # a welded follower: it cannot move anyway; only Drake refuses
         return (
-            f"{follower} joint {name} mimics joint {target} but has {_dof(follower)}",
-            Severity.ERROR,
+            f"{follower} joint {name} mimics joint {target} but has {_dof(follower)};"
+            " Drake refuses the model, the others drop the mimic",
+            Severity.WARNING if follower == "fixed" else Severity.ERROR,
         )
     if follower == leader == "fixed":
         return None  # nothing moves on either side; Drake ignores it with a warning
@@ -104,4 +110,6 @@ def _judge(follower: str, leader: str, name: str, target: str) -> tuple[str, Sev
     )
     if follower == leader == "planar":
         return message + "; the mimic is ignored", Severity.WARNING
+    if follower == "fixed":  # cannot move anyway: only Drake minds
+        return message + "; Drake refuses the model, the others drop the mimic", Severity.WARNING
     return message, Severity.ERROR
