@@ -5,6 +5,7 @@ Importing this package registers every rule (explicit imports, greppable).
 
 from urdflint.rules import (  # noqa: F401
     document,
+    engines,
     gazebo,
     geometry,
     inertial,

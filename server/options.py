@@ -30,6 +30,7 @@ Unknown form fields are refused (422), so a misspelt option never goes unnoticed
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import importlib.util
 import json
 from collections.abc import Iterable, Mapping
@@ -181,5 +182,6 @@ def parse(values: Mapping[str, list[str]]) -> Options:
         finder = values_of.SettingsFinder(args)
     except values_of.UsageError as exc:
         raise OptionError(str(exc).replace("--", "", 1)) from None
-    settings = finder._apply(base)
+    # the service never starts simulation engines on uploaded files (no --confirm here)
+    settings = dataclasses.replace(finder._apply(base), confirm=())
     return Options(settings, fmt, svg_text in TRUE, _last(values, "filename"))

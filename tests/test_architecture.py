@@ -4,11 +4,12 @@ and no function or module grows past what one reader can hold.
 Imports are read with ``ast``: module-level and function-level imports both count, imports
 under ``if TYPE_CHECKING:`` do not (they never run). The layers, lowest first:
 
-    model  <-  sources  <-  engine  <-  rules, outputs  <-  server  <-  cli
+    model <- sources <- engine <- rules, outputs, engines <- server <- cli
 
-A module may import its own layer and the layers below it; ``rules`` and ``outputs`` do not
-import each other. The package facade (``urdflint/__init__.py``) wires the engine's document
-views and may be imported from ``rules`` upwards.
+A module may import its own layer and the layers below it; ``rules``, ``outputs`` and
+``engines`` do not import each other (the E rules read the engines' outcomes through the
+``confirmation`` document view). The package facade (``urdflint/__init__.py``) wires the
+engine's document views and may be imported from ``rules`` upwards.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ LAYERS = {
     "urdflint.engine": 2,
     "urdflint.rules": 3,
     "urdflint.outputs": 3,
+    "urdflint.engines": 3,
     "urdflint.server": 4,
     "urdflint.cli": 5,
 }

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from urdflint import engines as _engines  # noqa: F401  (registers the "confirmation" view)
 from urdflint.engine import views as _views  # noqa: F401  (registers the engine's document views)
 from urdflint.model.finding import Finding, Severity
 

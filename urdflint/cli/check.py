@@ -112,6 +112,15 @@ def _more_options(check: argparse.ArgumentParser) -> None:
         "within TOL metres (default: expect.com-tolerance, 0.01)",
     )
     check.add_argument(
+        "--confirm",
+        action="append",
+        type=options.engine_list,
+        default=[],
+        metavar="ENGINES",
+        help="also load the model in these engines (mujoco, pybullet, drake, pinocchio or all; "
+        "comma-separated) and report what they refuse, drop, warn about or crash on (E rules)",
+    )
+    check.add_argument(
         "--emit-expanded",
         type=Path,
         metavar="FILE",

@@ -33,8 +33,10 @@ KEYS = frozenset(
         "expect",
         "xacro-args",
         "per-file-xacro-args",
+        "confirm",
     }
 )
+ENGINES = ("mujoco", "pybullet", "drake", "pinocchio")  # --confirm: the E rules
 EXPECT_KEYS = frozenset({"mass", "mass-tolerance", "com", "com-tolerance", "q"})
 
 
@@ -82,6 +84,7 @@ class Settings:
     xacro_args: dict[str, str] = field(default_factory=dict)
     per_file_xacro_args: tuple[tuple[str, dict[str, str]], ...] = ()
     source: Path | None = None  # the file these settings came from
+    confirm: tuple[str, ...] = ()  # engines that load the model (E rules; --confirm)
 
     def xacro_args_for(self, path: str) -> dict[str, str]:
         """``xacro-args``, then each matching ``per-file-xacro-args`` table (later wins)."""
@@ -188,7 +191,26 @@ def from_mapping(data: dict[str, Any], source: Path | None = None) -> Settings:
         settings = replace(settings, per_file_ignores=pairs)
     if "rules" in data:
         settings = replace(settings, rule_options=_rule_options(data["rules"]))
+    if "confirm" in data:
+        settings = replace(
+            settings, confirm=engines("confirm", _strings("confirm", data["confirm"]))
+        )
     return _inputs(settings, data, source)
+
+
+def engines(key: str, names: tuple[str, ...]) -> tuple[str, ...]:
+    """Engine names for ``confirm`` (``all`` = every one), validated, in the given order."""
+    found: list[str] = []
+    for name in (n.strip().lower() for n in names):
+        if name == "all":
+            found.extend(ENGINES)
+        elif name in ENGINES:
+            found.append(name)
+        elif name:
+            raise ConfigError(
+                f"'{key}': unknown engine {name!r} (known: {', '.join(ENGINES)}, all)"
+            )
+    return tuple(dict.fromkeys(found))
 
 
 def _inputs(settings: Settings, data: dict[str, Any], source: Path | None) -> Settings:

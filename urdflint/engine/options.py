@@ -69,6 +69,14 @@ def expect_com(text: str) -> tuple[tuple[float, float, float], float | None]:
     return com, (number(tolerance, "tolerance") if tolerance is not None else None)  # type: ignore[return-value]
 
 
+def engine_list(text: str) -> tuple[str, ...]:
+    """``--confirm mujoco,pybullet`` (or ``all``): the engines that load the model."""
+    try:
+        return config.engines("--confirm", tuple(text.split(",")))
+    except config.ConfigError as exc:
+        raise argparse.ArgumentTypeError(str(exc).replace("'--confirm': ", "")) from None
+
+
 class UsageError(Exception):
     """A wrong option value: the CLI prints it and exits 2, the service answers 422."""
 
@@ -93,6 +101,9 @@ def overrides(args: argparse.Namespace) -> dict[str, object]:
         found["targets"] = tuple(dict.fromkeys(args.target))
     if args.xacro_arg:
         found["xacro_args"] = dict(args.xacro_arg)
+    confirm = [e for group in getattr(args, "confirm", None) or () for e in group]
+    if confirm:
+        found["confirm"] = tuple(dict.fromkeys(confirm))
     return found
 
 

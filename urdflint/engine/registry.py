@@ -32,6 +32,7 @@ FAMILIES: dict[str, str] = {
     "J": "joints",
     "T": "transmissions",
     "P": "physics (Pinocchio)",
+    "E": "simulation engines (--confirm)",
     "U": "urdflint itself",
 }
 

@@ -1,0 +1,22 @@
+"""What the E rules share: the engines' outcomes for a document, and their names."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from urdflint.model.document import Document
+from urdflint.model.providers import provided
+
+LABELS = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "drake": "Drake", "pinocchio": "Pinocchio"}
+EXTRA = "pip install 'urdflint[engines]'"
+
+
+def outcomes(doc: Document) -> list[Any]:
+    """One outcome per engine named by ``--confirm`` (none without it: nothing runs)."""
+    if not getattr(doc.settings, "confirm", ()):
+        return []
+    return list(provided("confirmation", doc))
+
+
+def label(engine: str) -> str:
+    return LABELS.get(engine, engine)

@@ -1,0 +1,143 @@
+"""Confirmation against the real engines (``--confirm``, the E rules), per installed engine.
+
+Each engine is used only when it is installed (``urdflint[engines]``); the others skip.
+The fixtures are in ``fixtures/engines/``; what each engine does with them was observed
+with mujoco 4.0.0, pybullet 3.2.7, drake 1.51.1 and pin 4.1.0.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import FIXTURES, ROOT
+from tests.helpers import lint_file
+from urdflint.engine import config, linter
+from urdflint.engines import runner
+
+MODELS = FIXTURES / "engines"
+ENGINES = runner.ENGINES
+JOINT = "/robot/joint[@name='wrist_mount']"
+WORLD = "/robot/link[@name='world']"
+
+# fixture -> engine -> the (line, code, element) of the E findings; absent engines: none
+EXPECTED: dict[str, dict[str, set[tuple[int, str, str]]]] = {
+    "good_arm": {},
+    "undefined_link": {e: {(28, "E001", JOINT)} for e in ENGINES},
+    "negative_mass": {"drake": {(20, "E006", "/robot/link[@name='upper_arm']/inertial")}},
+    "no_inertial": {"pybullet": {(19, "E006", "/robot/link[@name='upper_arm']")}},
+    "two_roots": {
+        "pybullet": {(2, "E005", "/robot"), (3, "E006", "/robot/link[@name='base']")},
+        "pinocchio": {(3, "E001", "/robot/link[@name='base']")},
+    },
+    "world_link": {"drake": {(3, "E002", WORLD), (3, "E006", WORLD)}},
+}
+
+
+def confirmed(path: Path, *engines: str) -> list:
+    settings = config.Settings(confirm=engines)
+    return [f for f in lint_file(path, select=("E",), settings=settings)]
+
+
+def needs(engine: str):
+    return pytest.mark.skipif(not runner.installed(engine), reason=f"{engine} is not installed")
+
+
+@pytest.mark.parametrize("engine", [pytest.param(e, marks=needs(e)) for e in ENGINES])
+@pytest.mark.parametrize("model", sorted(EXPECTED))
+def test_each_engine_reports_what_it_does_with_the_model(engine: str, model: str) -> None:
+    findings = confirmed(MODELS / f"{model}.urdf", engine)
+    assert {(f.line, f.code, f.element) for f in findings} == EXPECTED[model].get(engine, set())
+    label = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "drake": "Drake"}.get(engine, "Pinocchio")
+    assert all(f.message.startswith(label + " ") for f in findings)
+
+
+@needs("pinocchio")
+def test_the_message_is_the_engines_first_line_of_reason() -> None:
+    (found,) = confirmed(MODELS / "undefined_link.urdf", "pinocchio")
+    assert found.message == (
+        "Pinocchio refused the model: Failed to build tree: child link [gripper] of joint "
+        "[wrist_mount] not found"
+    )
+    assert found.severity.name == "ERROR"
+
+
+def test_nothing_runs_without_confirm(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(runner, "confirm", lambda *a: pytest.fail("an engine was started"))
+    assert lint_file(MODELS / "undefined_link.urdf", select=("E",)) == []
+
+
+def test_an_engine_that_is_not_installed_is_one_info_note(monkeypatch) -> None:
+    monkeypatch.setattr(runner, "installed", lambda engine: False)
+    findings = confirmed(MODELS / "undefined_link.urdf", *ENGINES)
+    assert [(f.code, f.severity.name, f.element) for f in findings] == [
+        ("E001", "INFO", "/robot")
+    ] * 4
+    assert findings[0].message.endswith("is not installed: the model was not loaded in it")
+
+
+def test_a_probe_that_times_out_is_a_crash(monkeypatch, tmp_path: Path) -> None:
+    monkeypatch.setattr(runner, "installed", lambda engine: True)
+    doc = linter.load(MODELS / "good_arm.urdf", "good_arm.urdf", config.Settings())
+    path = runner.write_model(doc, tmp_path)
+    outcome = runner.run(doc, "drake", path, timeout=0.001)
+    assert outcome.crash == "did not finish loading the model within 0.001 s"
+    assert not outcome.built
+
+
+def test_meshes_are_rewritten_to_absolute_paths_on_the_same_lines(tmp_path: Path) -> None:
+    source = FIXTURES / "rules" / "C004" / "good.urdf"
+    settings = config.load(source.parent / "config.toml")
+    doc = linter.load(source, str(source), settings)
+    written = runner.write_model(doc, tmp_path).read_text().splitlines()
+    original = source.read_text().splitlines()
+    mesh = str((source.parent / "pkg" / "meshes" / "box.obj").resolve())
+    assert f'<mesh filename="{mesh}"/>' in written[25] and "package://" in original[25]
+    assert written[2] == original[2] and len(written) == len(original)
+    assert 'strippath="false"' in written[-1]  # MuJoCo keeps the absolute paths
+
+
+@needs("mujoco")
+def test_xacro_input_is_confirmed_from_its_expanded_document(tmp_path: Path) -> None:
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "box.obj").write_text(
+        (FIXTURES / "rules" / "C004" / "meshes" / "box.obj").read_text()
+    )
+    arm = (MODELS / "good_arm.urdf").read_text()
+    arm = arm.replace('<robot name="good_arm">', '<robot name="arm" '
+                      'xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <xacro:property name="m" '
+                      'value="1"/>')  # fmt: skip
+    arm = arm.replace('<cylinder radius="0.03" length="0.3"/>', '<mesh filename="meshes/box.obj"/>')
+    path = tmp_path / "arm.urdf.xacro"
+    path.write_text(arm)
+    assert confirmed(path, "mujoco") == []  # the relative mesh was found
+    path.write_text(arm.replace("meshes/box.obj", "meshes/nothere.obj"))
+    (found,) = confirmed(path, "mujoco")
+    assert (found.code, Path(found.path).name) == ("E001", "arm.urdf.xacro")
+
+
+def test_the_command_line_option(tmp_path: Path) -> None:
+    command = [sys.executable, "-m", "urdflint", "check", "--isolated", "--select", "E",
+               "--format", "json", str(MODELS / "undefined_link.urdf")]  # fmt: skip
+    bad = subprocess.run([*command, "--confirm", "bullet"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "unknown engine 'bullet'" in bad.stderr
+    run = subprocess.run([*command, "--confirm", "all"], capture_output=True, text=True, cwd=ROOT)
+    codes = {(f["code"], f["severity"]) for f in json.loads(run.stdout)["findings"]}
+    expected = {("E001", "error" if runner.installed(e) else "info") for e in ENGINES}
+    assert codes == expected and run.returncode == (1 if ("E001", "error") in codes else 0)
+
+
+def test_the_configuration_key_and_the_service() -> None:
+    assert config.from_mapping({"confirm": ["all"]}).confirm == ENGINES
+    assert config.from_mapping({"confirm": "drake"}).confirm == ("drake",)
+    with pytest.raises(config.ConfigError, match="unknown engine 'gazebo'"):
+        config.from_mapping({"confirm": ["gazebo"]})
+    pytest.importorskip("fastapi")
+    from urdflint.server import options as service
+
+    # the service never starts engines on uploaded files, whatever its config says
+    assert service.parse({"config": ['{"confirm": ["all"]}']}).settings.confirm == ()

@@ -1,0 +1,149 @@
+"""Run each engine's probe in its own process and read what it built and printed.
+
+The model is written to a temporary folder first: the document's own bytes (for xacro, the
+expanded document), with every mesh that resolves rewritten to its absolute path, so that
+each engine finds the meshes the run found (package paths, workspace packages, relative
+files). Elements keep their line numbers, so an engine's ``line N`` is a line of the
+document. Each probe runs with a timeout and a memory limit, from the temporary folder
+(MuJoCo writes its ``MUJOCO_LOG.TXT`` in the working folder).
+"""
+
+from __future__ import annotations
+
+import copy
+import importlib.util
+import json
+import signal
+import subprocess
+import sys
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from lxml import etree
+
+from urdflint.engine.config import ENGINES
+from urdflint.engines import output
+from urdflint.engines.output import Message
+from urdflint.model.document import Document
+
+__all__ = ["ENGINES", "Outcome", "confirm", "installed", "write_model"]
+MODULES = {"mujoco": "mujoco", "pybullet": "pybullet", "drake": "pydrake", "pinocchio": "pinocchio"}
+TIMEOUT = 60.0  # seconds per engine
+MEMORY = 3 << 30  # bytes of address space per engine (POSIX)
+
+
+@dataclass
+class Outcome:
+    """What one engine did with the model.
+
+    ``installed`` is false when the engine's module is not importable (nothing ran);
+    ``crash`` says how the process died (a signal, the timeout, no report); ``refusal``
+    is the engine's reason when it raised or refused to load; ``bodies`` and ``joints``
+    are the names in the model it built.
+    """
+
+    engine: str
+    installed: bool = True
+    built: bool = False
+    crash: str | None = None
+    refusal: Message | None = None
+    warnings: list[Message] = field(default_factory=list)
+    bodies: tuple[str, ...] = ()
+    joints: tuple[str, ...] = ()
+
+
+def installed(engine: str) -> bool:
+    return importlib.util.find_spec(MODULES[engine]) is not None
+
+
+def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -> list[Outcome]:
+    """Load ``doc`` in each of ``engines`` (in parallel, one process each)."""
+    wanted = [e for e in dict.fromkeys(engines) if e in ENGINES]
+    with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
+        path = write_model(doc, Path(folder))
+        with ThreadPoolExecutor(max_workers=max(len(wanted), 1)) as pool:
+            return list(pool.map(lambda e: run(doc, e, path, timeout), wanted))
+
+
+def write_model(doc: Document, folder: Path) -> Path:
+    """The model as the engines read it: meshes absolute, lines unchanged."""
+    from urdflint.sources.meshes import references, resolved
+
+    robot = copy.deepcopy(doc.robot)
+    twins = dict(zip(doc.robot.iter(), robot.iter(), strict=True))
+    for ref in references(doc):
+        found = resolved(doc, ref.uri)
+        if found.found and found.path is not None:
+            twins[ref.element].set("filename", str(found.path.resolve()))
+    _mujoco_keeps_paths(robot)
+    line = doc.start_of(doc.robot)[0]
+    text = "\n" * (line - 1) + etree.tostring(robot, encoding="unicode")
+    name = Path(doc.path).name.removesuffix(".xacro")
+    path = folder / (name if name.endswith(".urdf") else f"{name or 'robot'}.urdf")
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _mujoco_keeps_paths(robot: etree._Element) -> None:
+    """MuJoCo's URDF import keeps only a mesh's file name unless ``strippath="false"``."""
+    extension = robot.find("mujoco")
+    if extension is None:
+        extension = etree.SubElement(robot, "mujoco")
+    compiler = extension.find("compiler")
+    if compiler is None:
+        compiler = etree.SubElement(extension, "compiler")
+    compiler.set("strippath", "false")
+
+
+def run(doc: Document, engine: str, path: Path, timeout: float) -> Outcome:
+    if not installed(engine):
+        return Outcome(engine, installed=False)
+    command = [sys.executable, "-m", "urdflint.engines.probe", engine, str(path), str(MEMORY)]
+    try:
+        proc = subprocess.run(command, capture_output=True, timeout=timeout, cwd=path.parent)
+    except subprocess.TimeoutExpired:
+        return Outcome(engine, crash=f"did not finish loading the model within {timeout:g} s")
+    printed = proc.stderr.decode("utf-8", "replace")
+    log = path.parent / "MUJOCO_LOG.TXT"
+    if engine == "mujoco" and log.is_file():
+        printed += "\n" + log.read_text(encoding="utf-8", errors="replace")
+        log.unlink()
+    lines = output.clean(printed, str(path), doc.path)
+    warnings, errors = output.classify(doc, engine, lines)
+    report = _report(proc.stdout.decode("utf-8", "replace"))
+    if proc.returncode != 0 or report is None:
+        return Outcome(engine, crash=_death(proc.returncode, errors), warnings=warnings)
+    outcome = Outcome(engine, built=bool(report["ok"]), warnings=warnings,
+                      bodies=tuple(report["bodies"]), joints=tuple(report["joints"]))  # fmt: skip
+    if not outcome.built:
+        raised = output.clean(str(report["error"]), str(path), doc.path)
+        outcome.refusal = output.refusal(doc, errors, raised)
+    return outcome
+
+
+def _report(stdout: str) -> dict[str, Any] | None:
+    for line in reversed(stdout.splitlines()):
+        try:
+            found = json.loads(line)
+        except ValueError:
+            continue
+        if isinstance(found, dict) and "ok" in found:
+            return found
+    return None
+
+
+def _death(code: int, errors: list[Message]) -> str:
+    if code < 0:
+        try:
+            name = signal.Signals(-code).name
+        except ValueError:
+            name = f"signal {-code}"
+        why = f"was killed by {name}"
+    else:
+        why = f"exited with status {code} without building the model"
+    if errors:
+        why += f" after printing {errors[0].text!r}"
+    return why
