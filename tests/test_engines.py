@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import FIXTURES, ROOT
+from tests.conftest import CORPUS, FIXTURES, ROOT, needs_corpus
 from tests.helpers import lint_file
 from urdflint.engine import config, linter
 from urdflint.engines import runner
@@ -23,13 +23,26 @@ MODELS = FIXTURES / "engines"
 ENGINES = runner.ENGINES
 JOINT = "/robot/joint[@name='wrist_mount']"
 WORLD = "/robot/link[@name='world']"
+ARM = "/robot/link[@name='upper_arm']"
+ELBOW = "/robot/joint[@name='elbow']/limit"
+PLATE = "/robot/link[@name='plate']"
 
 # fixture -> engine -> the (line, code, element) of the E findings; absent engines: none
 EXPECTED: dict[str, dict[str, set[tuple[int, str, str]]]] = {
     "good_arm": {},
     "undefined_link": {e: {(28, "E001", JOINT)} for e in ENGINES},
-    "negative_mass": {"drake": {(20, "E006", "/robot/link[@name='upper_arm']/inertial")}},
-    "no_inertial": {"pybullet": {(19, "E006", "/robot/link[@name='upper_arm']")}},
+    "negative_mass": {"drake": {(20, "E006", f"{ARM}/inertial"), (20, "E004", f"{ARM}/inertial")}},
+    "no_inertial": {"pybullet": {(19, "E006", ARM), (19, "E004", ARM)}},
+    "inverted_limits": {
+        "mujoco": {(13, "E003", ELBOW)},
+        "pybullet": {(13, "E003", ELBOW)},
+        "drake": {(2, "E005", "/robot")},
+    },
+    "triangle_inertia": {
+        "mujoco": {(2, "E001", "/robot")},
+        "pybullet": {(16, "E006", PLATE), (17, "E004", f"{PLATE}/inertial")},
+        "drake": {(17, "E006", f"{PLATE}/inertial"), (17, "E004", f"{PLATE}/inertial")},
+    },
     "two_roots": {
         "pybullet": {(2, "E005", "/robot"), (3, "E006", "/robot/link[@name='base']")},
         "pinocchio": {(3, "E001", "/robot/link[@name='base']")},
@@ -141,3 +154,75 @@ def test_the_configuration_key_and_the_service() -> None:
 
     # the service never starts engines on uploaded files, whatever its config says
     assert service.parse({"config": ['{"confirm": ["all"]}']}).settings.confirm == ()
+
+
+# fixture -> engine -> the E003 and E004 messages, as observed (Pinocchio keeps all four)
+REPLACED = {
+    "inverted_limits": {
+        "mujoco": "MuJoCo built joint 'elbow' without limits (the URDF gives lower=1 upper=-1)",
+        "pybullet": "PyBullet built joint 'elbow' without limits (the URDF gives lower=1 upper=-1)",
+    },
+    "negative_mass": {
+        "drake": "Drake uses mass 1 kg and principal moments 0.00154 0.00154 0.00154 for link "
+        "'upper_arm' (the URDF gives mass -1 kg and principal moments 0.01 0.01 0.01)",
+    },
+    "triangle_inertia": {
+        "drake": "Drake uses mass 1 kg and principal moments 0.00154 0.00154 0.00154 for link "
+        "'plate' (the URDF gives mass 1 kg and principal moments 1 1 5)",
+        "pybullet": "PyBullet uses mass 1 kg and principal moments 0 0 0 for link 'plate' "
+        "(the URDF gives mass 1 kg and principal moments 1 1 5)",
+    },
+    "no_inertial": {
+        "pybullet": "PyBullet uses mass 1 kg and unit inertia for link 'upper_arm' "
+        "(the URDF gives none)",
+    },
+}
+
+
+@pytest.mark.parametrize("engine", [pytest.param(e, marks=needs(e)) for e in ENGINES])
+@pytest.mark.parametrize("model", sorted(REPLACED))
+def test_replaced_limits_and_inertias_are_reported_with_both_values(engine, model) -> None:
+    findings = [
+        f for f in confirmed(MODELS / f"{model}.urdf", engine) if f.code in ("E003", "E004")
+    ]
+    expected = REPLACED[model].get(engine)
+    assert [f.message for f in findings] == ([expected] if expected else [])
+    assert all(f.severity.name == "WARNING" for f in findings)
+
+
+# what each engine built for the inverted elbow (lower=1 upper=-1) and the slider
+BUILT_LIMITS = {
+    "mujoco": ("revolute", None, None),
+    "pybullet": ("revolute", None, None),
+    "pinocchio": ("revolute", 1.0, -1.0),
+}
+
+
+@pytest.mark.parametrize("engine", [pytest.param(e, marks=needs(e)) for e in ENGINES])
+def test_the_probe_reports_the_limits_each_engine_built(engine: str, tmp_path: Path) -> None:
+    doc = linter.load(MODELS / "inverted_limits.urdf", "inverted_limits.urdf", config.Settings())
+    outcome = runner.run(doc, engine, runner.write_model(doc, tmp_path), timeout=runner.TIMEOUT)
+    if engine == "drake":  # Drake aborts: Joint(): condition 'pos_lower <= pos_upper' failed
+        assert outcome.crash and not outcome.built
+        return
+    assert outcome.limits["elbow"] == BUILT_LIMITS[engine]
+    assert outcome.limits["slider"] == ("prismatic", -0.25, 0.5)
+    mass, moments = outcome.inertias["carriage"]
+    assert mass == pytest.approx(0.5) and moments == pytest.approx((0.001, 0.001, 0.0015))
+
+
+@pytest.mark.parametrize("engine", [pytest.param(e, marks=needs(e)) for e in ENGINES])
+def test_the_limit_and_inertia_rules_are_silent_on_healthy_robots(engine: str) -> None:
+    findings = confirmed(FIXTURES / "models" / "example_arm.urdf", engine)
+    assert [f for f in findings if f.code in ("E003", "E004")] == []
+
+
+@needs_corpus
+def test_the_limit_and_inertia_rules_are_silent_on_the_ur5() -> None:
+    model = CORPUS / "ur5" / "model.urdf"
+    mapping = json.loads((model.parent / "package_map.json").read_text())
+    paths = {name: (model.parent / folder).resolve() for name, folder in mapping.items()}
+    engines = tuple(e for e in ENGINES if runner.installed(e))
+    settings = config.Settings(confirm=engines, package_paths=paths)
+    findings = lint_file(model, select=("E003", "E004"), settings=settings)
+    assert findings == []

@@ -3,8 +3,11 @@
 ``python -m urdflint.engines.probe ENGINE URDF`` is run by :mod:`urdflint.engines.runner`
 in its own process (engines abort or crash on bad input). The engine's own output, C level
 included, is moved to stderr, where the parent reads it; stdout carries only the JSON line
-``{"engine", "ok", "error", "bodies", "joints"}``. ``bodies`` are the link names the engine
-kept (MuJoCo bodies, PyBullet links, Drake bodies, Pinocchio ``BODY`` frames).
+``{"engine", "ok", "error", "bodies", "joints", "limits", "inertias"}``. ``bodies`` are the
+link names the engine kept (MuJoCo bodies, PyBullet links, Drake bodies, Pinocchio ``BODY``
+frames). ``limits`` maps each revolute or prismatic joint to ``[type, lower, upper]`` as
+built (``null`` when unlimited), in URDF units; ``inertias`` maps each body to ``[mass,
+principal moments about its centre of mass]`` as built.
 """
 
 from __future__ import annotations
@@ -15,51 +18,132 @@ import sys
 from pathlib import Path
 from typing import Any
 
+Built = dict[str, Any]
+Limit = list[Any]
 
-def mujoco(path: str) -> tuple[list[str], list[str]]:
+
+def principal(matrix: Any) -> list[float]:
+    """The eigenvalues of a symmetric 3x3 tensor, ascending."""
+    import numpy as np
+
+    return [float(v) for v in np.linalg.eigvalsh(np.asarray(matrix, dtype=float).reshape(3, 3))]
+
+
+def bound(value: float, infinite: bool) -> float | None:
+    return None if infinite else float(value)
+
+
+def mujoco(path: str) -> Built:
     import mujoco as mj
 
     model = mj.MjModel.from_xml_path(path)
     bodies = [mj.mj_id2name(model, mj.mjtObj.mjOBJ_BODY, i) or "" for i in range(model.nbody)]
     joints = [mj.mj_id2name(model, mj.mjtObj.mjOBJ_JOINT, i) or "" for i in range(model.njnt)]
-    return bodies, joints
+    kinds = {int(mj.mjtJoint.mjJNT_HINGE): "revolute", int(mj.mjtJoint.mjJNT_SLIDE): "prismatic"}
+    limits: dict[str, Limit] = {}
+    for i, name in enumerate(joints):
+        kind = kinds.get(int(model.jnt_type[i]))
+        if kind is not None:
+            low, high = (float(v) for v in model.jnt_range[i])
+            limited = bool(model.jnt_limited[i])
+            limits[name] = [kind, low if limited else None, high if limited else None]
+    inertias = {
+        name: [float(model.body_mass[i]), sorted(float(v) for v in model.body_inertia[i])]
+        for i, name in enumerate(bodies)
+    }
+    return {"bodies": bodies, "joints": joints, "limits": limits, "inertias": inertias}
 
 
-def pybullet(path: str) -> tuple[list[str], list[str]]:
+def pybullet(path: str) -> Built:
     import pybullet as pb
 
     client = pb.connect(pb.DIRECT)
+    kinds = {pb.JOINT_REVOLUTE: "revolute", pb.JOINT_PRISMATIC: "prismatic"}
     try:
-        robot = pb.loadURDF(path, useFixedBase=True, physicsClientId=client)
+        robot = pb.loadURDF(path, useFixedBase=True, flags=pb.URDF_USE_INERTIA_FROM_FILE,
+                           physicsClientId=client)  # fmt: skip
         bodies = [pb.getBodyInfo(robot, physicsClientId=client)[0].decode()]
-        joints = []
+        joints, limits = [], {}
         for index in range(pb.getNumJoints(robot, physicsClientId=client)):
             info = pb.getJointInfo(robot, index, physicsClientId=client)
             joints.append(info[1].decode())
             bodies.append(info[12].decode())
-        return bodies, joints
+            if info[2] in kinds:  # Bullet: lower > upper means no limit
+                low, high = float(info[8]), float(info[9])
+                limited = low <= high
+                limits[joints[-1]] = [kinds[info[2]], low if limited else None,
+                                      high if limited else None]  # fmt: skip
+        inertias = {}
+        for index, name in enumerate(bodies, start=-1):
+            found = pb.getDynamicsInfo(robot, index, physicsClientId=client)
+            inertias[name] = [float(found[0]), sorted(float(v) for v in found[2])]
+        return {"bodies": bodies, "joints": joints, "limits": limits, "inertias": inertias}
     finally:
         pb.disconnect(client)
 
 
-def drake(path: str) -> tuple[list[str], list[str]]:
+def drake(path: str) -> Built:
+    import math
+
     from pydrake.multibody.parsing import Parser
     from pydrake.multibody.plant import MultibodyPlant
     from pydrake.multibody.tree import BodyIndex, JointIndex
 
     plant = MultibodyPlant(0.0)
     Parser(plant).AddModels(file_name=Path(path))
-    bodies = [plant.get_body(BodyIndex(i)).name() for i in range(1, plant.num_bodies())]
-    joints = [plant.get_joint(JointIndex(i)).name() for i in range(plant.num_joints())]
-    return bodies, joints
+    found = [plant.get_body(BodyIndex(i)) for i in range(1, plant.num_bodies())]
+    bodies = [body.name() for body in found]
+    joints, limits = [], {}
+    for i in range(plant.num_joints()):
+        joint = plant.get_joint(JointIndex(i))
+        joints.append(joint.name())
+        kind = {"revolute": "revolute", "prismatic": "prismatic"}.get(joint.type_name())
+        if kind is not None:
+            low = float(joint.position_lower_limits()[0])
+            high = float(joint.position_upper_limits()[0])
+            limits[joint.name()] = [
+                kind,
+                bound(low, math.isinf(low)),
+                bound(high, math.isinf(high)),
+            ]
+    inertias = {}
+    for body in found:
+        spatial = body.default_spatial_inertia()  # about the body origin: shift to the COM
+        about_com = spatial.Shift(spatial.get_com()).CalcRotationalInertia()
+        moments = about_com.CalcPrincipalMomentsOfInertia()
+        inertias[body.name()] = [float(body.default_mass()), sorted(float(v) for v in moments)]
+    return {"bodies": bodies, "joints": joints, "limits": limits, "inertias": inertias}
 
 
-def pinocchio(path: str) -> tuple[list[str], list[str]]:
+def pinocchio(path: str) -> Built:
+    import math
+
     import pinocchio as pin
 
     model = pin.buildModelFromUrdf(path)
-    bodies = [f.name for f in model.frames if f.type == pin.FrameType.BODY]
-    return bodies, [str(name) for name in list(model.names)[1:]]
+    frames = [f for f in model.frames if f.type == pin.FrameType.BODY]
+    joints = [str(name) for name in list(model.names)[1:]]
+    limits, inertias = {}, {}
+    for index, joint in enumerate(model.joints):
+        kind = {"R": "revolute", "P": "prismatic"}.get(joint.shortname()[len("JointModel")])
+        if index == 0 or joint.nq != 1 or kind is None:
+            continue
+        low = float(model.lowerPositionLimit[joint.idx_q])
+        high = float(model.upperPositionLimit[joint.idx_q])
+        unbounded = [math.isinf(v) or abs(v) >= 1e300 for v in (low, high)]
+        limits[str(model.names[index])] = [
+            kind,
+            bound(low, unbounded[0]),
+            bound(high, unbounded[1]),
+        ]
+        inertia = model.inertias[index]
+        inertias[str(model.names[index])] = [float(inertia.mass), principal(inertia.inertia)]
+    bodies = [f.name for f in frames]
+    child: dict[int, str] = {}
+    for frame in frames:  # a joint's first body frame is its child link (the others: lumped)
+        child.setdefault(int(frame.parentJoint), frame.name)
+    named = {child.get(model.getJointId(j), j): v for j, v in inertias.items()}
+    return {"bodies": bodies, "joints": joints, "limits": limits, "inertias": named}
 
 
 LOADERS = {"mujoco": mujoco, "pybullet": pybullet, "drake": drake, "pinocchio": pinocchio}
@@ -82,10 +166,10 @@ def main(argv: list[str]) -> int:
     limit_memory(int(rest[0]) if rest else 0)
     out = os.fdopen(os.dup(1), "w")
     os.dup2(2, 1)  # everything the engine prints, C level included, goes to stderr
-    report: dict[str, Any] = {"engine": engine, "ok": False, "error": None,
-                              "bodies": [], "joints": []}  # fmt: skip
+    report: dict[str, Any] = {"engine": engine, "ok": False, "error": None, "bodies": [],
+                              "joints": [], "limits": {}, "inertias": {}}  # fmt: skip
     try:
-        report["bodies"], report["joints"] = LOADERS[engine](path)
+        report.update(LOADERS[engine](path))
         report["ok"] = True
     except Exception as exc:  # the engine refused the model: its message is the finding
         report["error"] = f"{type(exc).__name__}: {exc}"

@@ -42,7 +42,9 @@ class Outcome:
     ``installed`` is false when the engine's module is not importable (nothing ran);
     ``crash`` says how the process died (a signal, the timeout, no report); ``refusal``
     is the engine's reason when it raised or refused to load; ``bodies`` and ``joints``
-    are the names in the model it built.
+    are the names in the model it built; ``limits`` maps each revolute or prismatic joint to
+    its ``(type, lower, upper)`` as built (``None``: unlimited) and ``inertias`` each body to
+    its ``(mass, principal moments)`` as built.
     """
 
     engine: str
@@ -53,6 +55,8 @@ class Outcome:
     warnings: list[Message] = field(default_factory=list)
     bodies: tuple[str, ...] = ()
     joints: tuple[str, ...] = ()
+    limits: dict[str, tuple[str, float | None, float | None]] = field(default_factory=dict)
+    inertias: dict[str, tuple[float, tuple[float, ...]]] = field(default_factory=dict)
 
 
 def installed(engine: str) -> bool:
@@ -118,6 +122,8 @@ def run(doc: Document, engine: str, path: Path, timeout: float) -> Outcome:
         return Outcome(engine, crash=_death(proc.returncode, errors), warnings=warnings)
     outcome = Outcome(engine, built=bool(report["ok"]), warnings=warnings,
                       bodies=tuple(report["bodies"]), joints=tuple(report["joints"]))  # fmt: skip
+    outcome.limits = {k: (v[0], v[1], v[2]) for k, v in report.get("limits", {}).items()}
+    outcome.inertias = {k: (v[0], tuple(v[1])) for k, v in report.get("inertias", {}).items()}
     if not outcome.built:
         raised = output.clean(str(report["error"]), str(path), doc.path)
         outcome.refusal = output.refusal(doc, errors, raised)
