@@ -81,5 +81,5 @@ def run_context(args: argparse.Namespace) -> Any:
     paths = [Path(p) for p in getattr(args, "paths", [getattr(args, "path", ".")]) if p != "-"]
     return Context(
         package_paths={name: Path(folder) for name, folder in args.package_path},
-        workspace=workspace.discover(paths or [Path.cwd()]),
+        workspace=workspace.Packages(paths or [Path.cwd()]),
     )

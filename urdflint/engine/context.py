@@ -28,7 +28,7 @@ class Context:
     root: Path | None = None
     environ: Mapping[str, str] | None = None
     q: dict[str, float] = field(default_factory=dict)
-    workspace: dict[str, Path] = field(default_factory=dict)
+    workspace: Mapping[str, Path] = field(default_factory=dict)  # may be found lazily
     _meshes: Any = None
 
     def resolver(self, base_dir: Path | None, settings: Settings) -> Resolver:

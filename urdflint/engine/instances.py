@@ -76,4 +76,4 @@ def across_files(findings: list[Finding]) -> list[Finding]:
     for f in findings:
         first.setdefault((f.path, f.line, f.column, f.code, f.message), f)
     unique = list(first.values())
-    return merge(unique) if len(unique) != len(findings) or any(f.trace for f in unique) else unique
+    return merge(unique)

@@ -41,7 +41,8 @@ def collect(
         path = Path(raw)
         if path.is_dir():
             urdfs, xacros = _below(path)
-            files.extend(str(p) for p in sorted(urdfs + entries(xacros, packages or {})))
+            found = entries(xacros, packages if packages is not None else {}) if xacros else []
+            files.extend(str(p) for p in sorted(urdfs + found))
         elif path.is_file():
             files.append(raw)
         elif path.exists():

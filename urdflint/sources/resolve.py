@@ -81,7 +81,7 @@ class Resolver:
         self.base_dir = base_dir
         self.root = root.resolve() if root is not None else None
         self.package_paths = dict(package_paths or {})
-        self.workspace = dict(workspace or {})
+        self.workspace = workspace if workspace is not None else {}  # a lazy Mapping
         env = os.environ if environ is None else environ
         # The environment and upward search are for the command line; a confined
         # resolver (the service) only sees explicit paths inside its root.

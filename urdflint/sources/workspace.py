@@ -9,7 +9,7 @@ hidden folders and build outputs are skipped, as the ROS build tools skip them.
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
 from urdflint.sources.resolve import package_name
@@ -87,3 +87,27 @@ def _walk(root: Path, packages: dict[str, Path], seen: set[Path], budget: list[i
 def discover(paths: Iterable[Path]) -> dict[str, Path]:
     """The packages a run over ``paths`` can use for ``$(find)`` and ``package://``."""
     return packages_below(roots_for(paths))
+
+
+class Packages(Mapping[str, Path]):
+    """The packages below ``paths``, found on first use: a run that resolves no package
+    (a URDF without ``package://`` meshes, no xacro ``$(find)``) never walks the tree."""
+
+    def __init__(self, paths: Iterable[Path]) -> None:
+        self.paths = tuple(paths)
+        self._found: dict[str, Path] | None = None
+
+    @property
+    def found(self) -> dict[str, Path]:
+        if self._found is None:
+            self._found = discover(self.paths)
+        return self._found
+
+    def __getitem__(self, name: str) -> Path:
+        return self.found[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.found)
+
+    def __len__(self) -> int:
+        return len(self.found)

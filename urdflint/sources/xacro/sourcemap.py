@@ -16,7 +16,6 @@ start tag, and the chain of macro calls that produced it, innermost first.
 
 from __future__ import annotations
 
-import bisect
 import xml.dom
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -28,7 +27,7 @@ from lxml import etree
 
 from urdflint.model.document import Origin
 from urdflint.model.finding import Call
-from urdflint.model.positions import attribute_offset
+from urdflint.model.positions import Lines, attribute_offset
 
 MARK = "_urdflint_mark"  # the attribute set on minidom nodes: (source, byte offset, chain)
 
@@ -46,20 +45,12 @@ class SourceFile:
     data: bytes
 
     @cached_property
-    def _starts(self) -> list[int]:
-        starts = [0]
-        find = self.data.find
-        index = find(b"\n")
-        while index >= 0:
-            starts.append(index + 1)
-            index = find(b"\n", index + 1)
-        return starts
+    def _lines(self) -> Lines:
+        return Lines(self.data)
 
     def position(self, offset: int) -> tuple[int, int]:
         """1-based line and (character) column of a byte offset."""
-        line = bisect.bisect_right(self._starts, offset)
-        start = self._starts[line - 1]
-        return line, len(self.data[start:offset].decode("utf-8", "replace")) + 1
+        return self._lines.position(offset)
 
 
 def builder_class(files: list[SourceFile], index: int) -> type[ExpatBuilderNS]:
