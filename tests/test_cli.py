@@ -82,6 +82,8 @@ def test_json_envelope(capsys, no_limit: Path) -> None:
         "element",
         "fix",
         "trace",
+        "effects",
+        "engine",
     }
     assert finding["element"] == "/robot/joint[@name='shoulder']"
     assert finding["severity"] == "error" and finding["line"] == 4

@@ -20,7 +20,7 @@ from urdflint.cli.common import (
     model_options,
     run_context,
 )
-from urdflint.engine import config, instances, options
+from urdflint.engine import config, instances, matrix, options
 from urdflint.engine.options import SettingsFinder
 from urdflint.model import targets
 from urdflint.model.finding import Finding
@@ -75,9 +75,16 @@ def add_parser(sub: Any) -> None:
     check.add_argument(
         "--target",
         action="append",
-        choices=tuple(targets.TARGETS),
+        choices=(*targets.TARGETS, targets.ALL),
         default=[],
-        help="consumer the model is meant for (repeatable; default gazebo-classic)",
+        help="consumer the model is meant for (repeatable; default gazebo-classic; all: every one)",
+    )
+    check.add_argument(
+        "--matrix",
+        action="store_true",
+        help="show what each target will do with the model: loads, loads with changes, "
+        "refused or crashes, and the findings that decide it (with --confirm: what the "
+        "engines did)",
     )
     _more_options(check)
 
@@ -156,6 +163,7 @@ class Run:
     fail_on: str = "error"
     crashed: bool = False
     expects: bool = False
+    matrix: list[dict[str, Any]] = field(default_factory=list)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -182,7 +190,13 @@ def run(args: argparse.Namespace) -> int:
         fmt = "github" if os.environ.get("GITHUB_ACTIONS") == "true" else "text"
     show_info = args.show_info or outcome.fail_on == "info"
     info = formatters.RunInfo(
-        __version__, tuple(outcome.checked), outcome.models, outcome.fail_on, outcome.ran, show_info
+        __version__,
+        tuple(outcome.checked),
+        outcome.models,
+        outcome.fail_on,
+        outcome.ran,
+        show_info,
+        tuple(outcome.matrix),
     )
     _write_outputs([(fmt, args.output), *reports], findings, info)
     return _exit_code(args, files, outcome, findings)
@@ -200,6 +214,8 @@ def _lint_files(
             settings = finder.for_folder(Path.cwd() if is_stdin else Path(name).parent)
         except config.ConfigError as exc:
             raise UsageError(str(exc)) from None
+        if args.matrix and not args.target and settings.targets == targets.DEFAULT_TARGETS:
+            settings = replace(settings, targets=tuple(targets.TARGETS))  # every row
         try:
             if is_stdin:
                 data = sys.stdin.buffer.read()
@@ -218,6 +234,9 @@ def _lint_files(
         expect = settings.expect
         outcome.expects = outcome.expects or expect.mass is not None or expect.com is not None
         outcome.models[shown] = report.model_summary(result)
+        if args.matrix and result.document is not None and result.document.root is not None:
+            rows = matrix.rows(result.findings, settings.targets, settings.confirm)
+            outcome.matrix.extend({"path": shown, **row} for row in rows)
         if args.emit_expanded and result.document is not None:
             args.emit_expanded.write_bytes(result.document.source)
 

@@ -23,6 +23,8 @@ def page(rule: Rule) -> str:
     lines = [f"{rule.code} {rule.name} (default severity: {rule.severity})", "", rule.summary, ""]
     for heading in ("What it does", "Why is this bad?", "How to fix"):
         lines += [f"## {heading}", rule.section(heading), ""]
+    if rule.effects:
+        lines += ["## What each target does", *effects_section(rule), ""]
     if rule.options:
         lines += ["## Options", *(f"- `{k}` (default {v!r})" for k, v in rule.options.items()), ""]
     if rule.needs:
@@ -31,6 +33,26 @@ def page(rule: Rule) -> str:
         kind = "Bad" if name.startswith("bad") else "Good"
         lines += [f"## {kind} example ({name})", "```xml", text.rstrip(), "```", ""]
     return "\n".join(lines)
+
+
+def effects_section(rule: Rule) -> list[str]:
+    """One line per (variant, target): the consequence, its severity and what the consumer
+    does, and where that comes from."""
+    from urdflint.model import targets
+
+    lines: list[str] = []
+    for variant, table in rule.effects.items():
+        if variant:
+            lines.append(f"{variant}:")
+        for target in targets.ordered(tuple(table)):
+            effect = table[target]
+            basis = "observed" if targets.ENGINE[target] else "from its source and docs"
+            detail = f": {effect.detail}" if effect.detail else ""
+            lines.append(
+                f"- {targets.LABELS[target]} ({basis}): {effect.consequence.key}, "
+                f"{effect.level}{detail}"
+            )
+    return lines
 
 
 def rule_table() -> str:

@@ -13,8 +13,9 @@ from urdflint.engine import instances, registry, suppress
 from urdflint.engine.config import Settings
 from urdflint.engine.context import Context
 from urdflint.engine.registry import Hit, Rule
-from urdflint.model import optional
+from urdflint.model import optional, targets
 from urdflint.model.document import Document
+from urdflint.model.effects import for_targets
 from urdflint.model.finding import Call, Finding, Severity
 
 log = logging.getLogger(__name__)
@@ -186,8 +187,14 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
     """Turn a rule's hit into a finding: path, line, column, element, code, severity."""
     element = hit.element
     line, column = _position(doc, hit)
-    configured = settings.severity.get(rule.code)
-    severity = configured or hit.severity or rule.severity
+    chosen = targets.ordered(doc.targets)
+    if hit.effects is not None:
+        effects = tuple((t, hit.effects[t]) for t in chosen if t in hit.effects)
+    else:
+        effects = for_targets(rule.effects, hit.variant, chosen)
+    severity = settings.severity.get(rule.code) or hit.severity or rule.severity
+    if rule.by_target and effects and not (settings.severity.get(rule.code) or hit.severity):
+        severity = max(effect.level for _, effect in effects)
     shown, message = hit.path or doc.path, hit.message
     if doc.recovered and rule.code != "X001":
         message += RECOVERED
@@ -215,6 +222,8 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
         element=path,
         fix=hit.fix or rule.fix,
         trace=trace,
+        effects=effects,
+        engine=hit.engine,
     )
 
 

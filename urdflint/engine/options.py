@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint.engine import config, registry
+from urdflint.model import targets
 from urdflint.model.values import parse_number
 
 
@@ -98,7 +99,7 @@ def overrides(args: argparse.Namespace) -> dict[str, object]:
     elif args.fail_on:
         found["fail_on"] = args.fail_on
     if args.target:
-        found["targets"] = tuple(dict.fromkeys(args.target))
+        found["targets"] = targets.validate(args.target)
     if args.xacro_arg:
         found["xacro_args"] = dict(args.xacro_arg)
     confirm = [e for group in getattr(args, "confirm", None) or () for e in group]

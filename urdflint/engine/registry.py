@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from urdflint.model.effects import Effect, Effects
 from urdflint.model.finding import Severity
 
 if TYPE_CHECKING:
@@ -55,6 +56,9 @@ class Hit:
     column: int | None = None
     path: str | None = None  # with ``line``: a position in another file (a xacro include)
     attribute: str | None = None  # the attribute at fault: the finding points at it
+    variant: str = ""  # which of the rule's effect tables applies (e.g. "negative", "zero")
+    engine: str | None = None  # E rules: the --confirm engine the hit is about
+    effects: Mapping[str, Effect] | None = None  # target -> effect, when the rule works it out
 
 
 Check = Callable[..., Iterator[Hit]]
@@ -72,6 +76,16 @@ class Rule:
     options: Mapping[str, Any] = field(default_factory=dict)
     requires_robot: bool = True
     targets: frozenset[str] = frozenset()  # runs only for these targets (empty: always)
+    effects: Effects = field(default_factory=dict)  # variant -> target -> effect
+    by_target: bool = False  # severity: the worst effect on the selected targets
+
+    def effect_table(self) -> list[tuple[str, str, str, str]]:
+        """``(variant, target, consequence, detail)`` rows for the rule's page."""
+        return [
+            (variant, target, effect.consequence.key, effect.detail)
+            for variant, table in self.effects.items()
+            for target, effect in table.items()
+        ]
 
     @property
     def family(self) -> str:
@@ -100,6 +114,8 @@ def rule(
     options: Mapping[str, Any] | None = None,
     requires_robot: bool = True,
     targets: tuple[str, ...] = (),
+    effects: Effects | None = None,
+    by_target: bool = False,
 ) -> Callable[[Check], Check]:
     """Register a rule; the module docstring is its documentation page.
 
@@ -109,6 +125,9 @@ def rule(
     is called as ``check(doc, opts)``; ``requires_robot=False`` lets the rule
     run on documents that are not a usable ``<robot>`` (the X001/X002 rules);
     ``targets`` limits a target rule to runs that select one of those targets.
+    ``effects`` says what each target does with the defect (per variant, see
+    :mod:`urdflint.model.effects`); with ``by_target`` the finding's severity is the worst
+    effect's on the run's targets instead of ``severity``.
     """
 
     def register(fn: Check) -> Check:
@@ -129,6 +148,8 @@ def rule(
             dict(options or {}),
             requires_robot,
             frozenset(targets),
+            dict(effects or {}),
+            by_target,
         )
         return fn
 

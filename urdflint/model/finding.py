@@ -5,6 +5,10 @@ from __future__ import annotations
 import enum
 import hashlib
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdflint.model.effects import Effect
 
 
 class Severity(enum.IntEnum):
@@ -54,6 +58,8 @@ class Finding:
     element: str
     fix: str | None = None
     trace: tuple[Call, ...] = ()  # xacro: the macro calls behind the element, innermost first
+    effects: tuple[tuple[str, Effect], ...] = ()  # what each selected target does with it
+    engine: str | None = None  # E rules: the --confirm engine that did it
 
     def __post_init__(self) -> None:
         if self.line < 1 or self.column < 1:
@@ -71,4 +77,8 @@ class Finding:
     def to_dict(self) -> dict[str, object]:
         data = asdict(self)
         data["severity"] = str(self.severity)
+        data["effects"] = {
+            target: {"consequence": e.consequence.key, "detail": e.detail}
+            for target, e in self.effects
+        }
         return data

@@ -1,7 +1,8 @@
 """The consumers a model is meant for.
 
 A target changes the messages and severities of target rules (G002, J004,
-J012, ...), never whether the model is structurally valid.
+J012, ...) and the effects findings carry (:mod:`urdflint.model.effects`), never whether
+the model is structurally valid. ``all`` selects every target.
 """
 
 from __future__ import annotations
@@ -13,23 +14,63 @@ TARGETS: dict[str, str] = {
     "materials, massless links are dropped with a warning",
     "mujoco": "MuJoCo's URDF import: STL and OBJ meshes only (no Collada), inertia must "
     "satisfy A + B >= C, transmissions are ignored, mimic becomes an equality constraint",
+    "drake": "Drake's URDF parser (pydrake): invalid inertias are replaced with a warning, "
+    "inverted limits abort the process, <calibration> and friction are warned about",
+    "pybullet": "PyBullet's URDF loader: invalid inertias are loaded as written (or zeroed "
+    "with URDF_USE_INERTIA_FROM_FILE), a missing <inertial> becomes 1 kg, two roots crash",
+    "isaac": "Isaac Sim's URDF importer (PhysX): links without mass get it from collision "
+    "density, unknown package paths lose their meshes, mimic joints are converted",
+    "pinocchio": "Pinocchio's URDF parser (urdfdom): kinematics and dynamics as written, "
+    "a second root or a missing link refuses the model",
+    "ros": "ROS: urdfdom (robot_state_publisher), KDL (kdl_parser) and MoveIt's RobotModel: "
+    "kinematics only, KDL ignores the root link's inertia",
 }
 DEFAULT_TARGETS: tuple[str, ...] = ("gazebo-classic",)
+ALL = "all"
 
 LABELS: dict[str, str] = {
     "gazebo-classic": "Gazebo Classic",
     "gz-sim": "Gazebo Sim",
     "mujoco": "MuJoCo",
+    "drake": "Drake",
+    "pybullet": "PyBullet",
+    "isaac": "Isaac Sim",
+    "pinocchio": "Pinocchio",
+    "ros": "ROS (KDL, MoveIt)",
+}
+
+# The --confirm engine that shows what a target does (None: not runnable here, the
+# prediction follows the consumer's source and documentation).
+ENGINE: dict[str, str | None] = {
+    "gazebo-classic": "sdformat",
+    "gz-sim": "sdformat",
+    "mujoco": "mujoco",
+    "drake": "drake",
+    "pybullet": "pybullet",
+    "isaac": None,
+    "pinocchio": "pinocchio",
+    "ros": None,
 }
 
 
 def validate(names: list[str] | tuple[str, ...]) -> tuple[str, ...]:
-    """Check target names; raises ``ValueError`` naming the unknown one."""
+    """Check target names (``all`` expands to every target); raises ``ValueError`` naming
+    the unknown one."""
+    found: list[str] = []
     for name in names:
-        if name not in TARGETS:
+        if name == ALL:
+            found.extend(TARGETS)
+        elif name in TARGETS:
+            found.append(name)
+        else:
             known = ", ".join(TARGETS)
-            raise ValueError(f"unknown target {name!r} (known: {known})")
-    return tuple(dict.fromkeys(names))
+            raise ValueError(f"unknown target {name!r} (known: {known}, {ALL})")
+    return tuple(dict.fromkeys(found))
+
+
+def ordered(names: frozenset[str] | tuple[str, ...]) -> tuple[str, ...]:
+    """``names`` in the canonical order of :data:`TARGETS`."""
+    return tuple(t for t in TARGETS if t in names)
 
 
 def gazebo_label(targets: frozenset[str]) -> str:

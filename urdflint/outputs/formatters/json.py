@@ -18,6 +18,8 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, object]:
     }
     if run.models:
         data["models"] = run.models
+    if run.matrix:
+        data["matrix"] = list(run.matrix)
     return data
 
 

@@ -19,6 +19,7 @@ class RunInfo:
     fail_on: str = "error"  # lowest failing severity, or "never" (JUnit failures)
     rules: dict[str, tuple[str, ...]] = field(default_factory=dict)  # path -> rule codes run
     show_info: bool = True  # text: list infos one by one (else one summary line)
+    matrix: tuple[dict[str, Any], ...] = ()  # --matrix: one row per (file, target)
 
     def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
         counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}

@@ -11,6 +11,7 @@ from collections import Counter
 from collections.abc import Sequence
 
 from urdflint.model.finding import Finding, Severity
+from urdflint.outputs import matrix_text
 from urdflint.outputs.formatters.run import RunInfo, summary_line
 
 MAX_CODES = 6  # rules named in the info summary line
@@ -25,8 +26,13 @@ def render(findings: Sequence[Finding], run: RunInfo) -> str:
             continue
         lines.append(f"{f.path}:{f.line}:{f.column}: {f.severity} {f.code} {f.name}: {f.message}")
         lines.extend(f"    {call}" for call in f.trace)  # xacro: the macro calls, innermost first
+        effects = matrix_text.effects_line(f)
+        if effects:
+            lines.append(f"    {effects}")
     if hidden:
         lines.append(info_summary(hidden))
+    if run.matrix:
+        lines.extend(matrix_text.table(run.matrix))
     lines.append(summary_line(findings, run))
     return "\n".join(lines) + "\n"
 
