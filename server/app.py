@@ -11,12 +11,15 @@ Endpoints (OpenAPI at ``/openapi.json``, shown by ``/docs``, which works offline
                         as query parameters or form fields (``options.py``). 200 with the
                         CLI's ``--format json`` document plus ``passed``, whenever linting
                         ran, even on a broken model
+``GET /v1/capabilities`` targets, formats, whether ``confirm`` is allowed and which
+                        engines are installed, the limits (touches no worker)
 ``GET /v1/rules``       the rule catalogue (as ``urdflint rules --format json``)
 ``GET /v1/rules/{code}`` one rule, with its page as Markdown (as ``urdflint explain``)
 ``GET /healthz``        liveness: 200 while the process serves requests, touching nothing
                         else (not even the workers: a restart would not fix a busy server)
 ``GET /readyz``         readiness: a worker builds a tiny model with Pinocchio and loads a
-                        tiny mesh; reports the optional capabilities and the limits. 503
+                        tiny mesh; reports the optional capabilities, ``confirm`` and the
+                        limits. 503
                         with ``{"ready": false, "reason": ...}`` while the workers start,
                         when every one is busy, or when they cannot start (the reason
                         names the cause, e.g. the worker's import error)
@@ -42,6 +45,12 @@ and more). Each lint job runs in a worker process (``pool.py``, ``worker.py``) i
 per-request temporary folder that is removed afterwards; nothing outside that folder is
 read and no network connection is opened. The service keeps no state between requests:
 scale it by running more containers behind any load balancer.
+
+The ``confirm`` option (load the model in MuJoCo, PyBullet, Drake, Pinocchio) is off by
+default: the engines are heavy native code loading untrusted input. ``urdflint serve
+--allow-confirm`` (``URDFLINT_ALLOW_CONFIRM=1``) turns it on; each engine then runs in its
+own process with a memory limit and a timeout, within the job's time limit, on a copy of
+the model that only references the upload's files (``confirming.py``).
 
 :func:`create_app` assembles the app: the routes of ``routes_meta.py`` (probes, rules),
 ``routes_check.py`` (the check) and ``page.py`` (the web page, security headers), the

@@ -5,7 +5,9 @@ While a job runs (inside :func:`fenced`), the audit hook refuses, in the job's t
 - opening or listing anything outside the request's folder and the Python installation
   (the interpreter's prefixes and the folders urdflint itself is imported from);
 - creating sockets, resolving host names, connecting (no network, ever);
-- starting processes (``subprocess``, ``os.system``, ``exec*``, ``fork``).
+- starting processes (``subprocess``, ``os.system``, ``exec*``, ``fork``), in any thread of
+  the worker, except the commands the job allows (:attr:`_Fence.commands`: with ``confirm``,
+  the engine probe, started from inside the request's folder; see ``confirming.py``).
 
 Temporary files a library makes during the job (Pinocchio's captured output) go to the
 request's folder too (``tempfile.tempdir``), so they are removed with it.
@@ -55,6 +57,10 @@ DENIED_ALWAYS = frozenset(
         "smtplib.connect",
     }
 )
+SPAWN_EVENTS = frozenset(
+    {"subprocess.Popen", "os.system", "os.exec", "os.posix_spawn", "os.spawn", "os.fork",
+     "os.forkpty", "pty.spawn"}
+)  # fmt: skip
 PATH_EVENTS = frozenset({"open", "os.listdir", "os.scandir", "glob.glob", "shutil.copyfile"})
 WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
 DEVICES = ("/dev/null", "/dev/urandom", "/dev/random")
@@ -71,6 +77,7 @@ class _Fence:
         self.importable: frozenset[str] = frozenset()
         self.denied: list[str] = []
         self.thread: int | None = None
+        self.commands: tuple[tuple[str, ...], ...] = ()  # command prefixes the job may start
 
     def allowed_path(self, raw: Any, write: bool) -> bool:
         """Whether the job may open ``raw`` (for writing when ``write``)."""
@@ -90,11 +97,33 @@ class _Fence:
             return False
         return any(path == p or path.startswith(p + os.sep) for p in self.readable)
 
+    def allowed_command(self, event: str, args: tuple[Any, ...]) -> bool:
+        """Whether ``subprocess.Popen`` starts one of :attr:`commands` from inside the root."""
+        if event != "subprocess.Popen" or not self.commands or len(args) < 3:
+            return False
+        executable, argv, cwd = args[:3]
+        if not isinstance(argv, (list, tuple)) or cwd is None:
+            return False
+        try:
+            words = [os.fsdecode(word) for word in argv]
+            program = os.fsdecode(executable) if executable is not None else words[0]
+        except (TypeError, IndexError):
+            return False
+        where, root = _real(cwd), self.root or ""
+        if program != words[0] or not (root and where.startswith(root + os.sep)):
+            return False  # started from inside the root, where the model was written
+        return any(tuple(words[: len(prefix)]) == prefix for prefix in self.commands)
+
     def hook(self, event: str, args: tuple[Any, ...]) -> None:
         """The audit hook: raises ``PermissionError`` for what the running job may not do."""
-        if self.root is None or threading.get_ident() != self.thread:
+        if self.root is None:
             return
-        if event in DENIED_ALWAYS:
+        if event in SPAWN_EVENTS and not self.allowed_command(event, args):
+            self.denied.append(event)  # any thread: the engines run from a thread pool
+            raise PermissionError(f"urdflint service: {event} is not allowed while linting")
+        if threading.get_ident() != self.thread:
+            return
+        if event in DENIED_ALWAYS and event not in SPAWN_EVENTS:
             self.denied.append(event)
             raise PermissionError(f"urdflint service: {event} is not allowed while linting")
         if event not in PATH_EVENTS or not args:
@@ -169,6 +198,7 @@ def fenced(root: Path) -> Iterator[list[str]]:
     finally:
         FENCE.root = None
         FENCE.thread = None
+        FENCE.commands = ()
         tempfile.tempdir = saved
         if FENCE.denied:
             log.warning("refused during the job: %s", "; ".join(FENCE.denied[:20]))

@@ -14,6 +14,7 @@ import contextlib
 import logging
 import os
 import traceback
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -41,6 +42,8 @@ class CheckJob:
     fmt: str = "json"
     svg: bool = False
     zip_limits: ZipLimits | None = None
+    matrix: bool = False  # add the compatibility matrix (``matrix`` option)
+    timeout: float = 60.0  # the job's time limit: the engines (``confirm``) must fit in it
 
 
 @dataclass(frozen=True)
@@ -72,13 +75,6 @@ def run(job: CheckJob | ReadyJob) -> dict[str, Any]:
 
 def check(job: CheckJob) -> dict[str, Any]:
     """Lint the upload inside the fence: the findings document, or a rendered format."""
-    from urdflint import __version__
-    from urdflint.engine import linter
-    from urdflint.engine.context import Context
-    from urdflint.model.finding import Finding
-    from urdflint.outputs import formatters
-    from urdflint.outputs.report import FAIL_LEVEL, model_summary, skipped_note
-
     from .uploads import Rejected, ZipLimits, extract
 
     root = Path(job.folder) / "files"
@@ -97,31 +93,57 @@ def check(job: CheckJob) -> dict[str, Any]:
         fd = os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
         with os.fdopen(fd, "wb") as out:
             out.write(job.urdf)
-        settings = job.settings
-        context = Context(package_paths=packages, root=root, environ={})
-        result = linter.lint_path(target, job.name, settings, context)
-        findings: list[Finding] = list(result.findings)
-        skipped = dict(result.skipped)
-        expects = settings.expect.mass is not None or settings.expect.com is not None
-        gate = expects and bool({"P003", "P004"} & set(skipped))
-        if skipped and (gate or "U004" in settings.enabled()):
-            findings.append(skipped_note(job.name, skipped, expects))
-        findings = sorted((_scrub(f, root) for f in findings), key=Finding.sort_key)
-        models = {job.name: model_summary(result)} if job.fmt == "json" else {}
-        run_info = formatters.RunInfo(__version__, (job.name,), models)
-        if job.fmt != "json":
-            return _rendered(job.fmt, findings, run_info)
-        from urdflint.outputs.formatters.json import document
+        if not job.settings.confirm:
+            return _lint(job, root, target, packages, Scrub(root, Path(job.folder)))
+        from .confirming import confined
 
-        data = document(findings, run_info)
-        threshold = FAIL_LEVEL.get(settings.fail_on)
-        failing = threshold is not None and any(f.severity >= threshold for f in findings)
-        data["passed"] = not (failing or result.crashed)
-        if job.svg and result.document is not None:
-            picture = _svg(result.document, findings)
-            if picture is not None:
-                data["svg"] = {job.name: picture}
-        return reply(200, data)
+        with confined(root, job.timeout) as engines:
+            scrub = Scrub(root, Path(job.folder), engines.shown)
+            return _lint(job, root, target, packages, scrub)
+
+
+def _lint(
+    job: CheckJob, root: Path, target: Path, packages: dict[str, Path], scrub: Scrub
+) -> dict[str, Any]:
+    """Lint the written upload; the answer in the job's format."""
+    from urdflint import __version__
+    from urdflint.engine import linter, matrix
+    from urdflint.engine.context import Context
+    from urdflint.model.finding import Finding
+    from urdflint.outputs import formatters
+    from urdflint.outputs.report import FAIL_LEVEL, model_summary, skipped_note
+
+    settings = job.settings
+    context = Context(package_paths=packages, root=root, environ={})
+    result = linter.lint_path(target, job.name, settings, context)
+    scrubbed: list[Finding] = [scrub.finding(f) for f in result.findings]
+    findings = list(scrubbed)
+    skipped = dict(result.skipped)
+    expects = settings.expect.mass is not None or settings.expect.com is not None
+    gate = expects and bool({"P003", "P004"} & set(skipped))
+    if skipped and (gate or "U004" in settings.enabled()):
+        findings.append(skipped_note(job.name, skipped, expects))
+    findings.sort(key=Finding.sort_key)
+    rows: list[dict[str, Any]] = []
+    doc = result.document
+    if job.matrix and doc is not None and doc.root is not None:
+        found = matrix.rows(scrubbed, settings.targets, settings.confirm)
+        rows = [scrub.value({"path": job.name, **row}) for row in found]
+    models = {job.name: model_summary(result)} if job.fmt == "json" else {}
+    run_info = formatters.RunInfo(__version__, (job.name,), models, matrix=tuple(rows))
+    if job.fmt != "json":
+        return _rendered(job.fmt, findings, run_info)
+    from urdflint.outputs.formatters.json import document
+
+    data = document(findings, run_info)
+    threshold = FAIL_LEVEL.get(settings.fail_on)
+    failing = threshold is not None and any(f.severity >= threshold for f in findings)
+    data["passed"] = not (failing or result.crashed)
+    if job.svg and doc is not None:
+        picture = _svg(doc, findings)
+        if picture is not None:
+            data["svg"] = {job.name: picture}
+    return reply(200, data)
 
 
 def _rendered(fmt: str, findings: list[Any], run_info: Any) -> dict[str, Any]:
@@ -150,24 +172,43 @@ def _svg(doc: Any, findings: list[Any]) -> str | None:
         return None
 
 
-def _scrub(finding: Any, root: Path) -> Any:
-    """Findings never show the server's folders: paths inside the upload become relative."""
-    prefixes = sorted({str(root), os.path.realpath(root)}, key=len, reverse=True)
+class Scrub:
+    """Answers never show the server's folders: paths inside the upload become relative,
+    the rest of the job's folder (the engines' copy of the model) ``.``-relative, and the
+    file references ``confirm`` pointed away from the server's disk read as written."""
 
-    def clean(text: str | None) -> str | None:
-        if text is None:
-            return None
-        for prefix in prefixes:
+    def __init__(self, root: Path, folder: Path, shown: Mapping[str, str] | None = None) -> None:
+        self.shown = shown if shown is not None else {}
+        found = {str(root), os.path.realpath(root)}
+        self.prefixes = sorted(found, key=len, reverse=True)
+        outer = {str(folder), os.path.realpath(folder)}
+        self.prefixes += sorted(outer, key=len, reverse=True)
+
+    def text(self, text: str) -> str:
+        for replaced, written in sorted(self.shown.items(), key=lambda kv: -len(kv[0])):
+            text = text.replace(replaced, written)
+        for prefix in self.prefixes:
             text = text.replace(prefix + os.sep, "").replace(prefix, ".")
         return text
 
-    fields: dict[str, str | None] = {}
-    for name in ("path", "message", "fix"):
-        value = getattr(finding, name)
-        cleaned = clean(value)
-        if cleaned != value:
-            fields[name] = cleaned
-    return replace(finding, **fields) if fields else finding
+    def finding(self, finding: Any) -> Any:
+        fields: dict[str, str | None] = {}
+        for name in ("path", "message", "fix"):
+            value = getattr(finding, name)
+            cleaned = None if value is None else self.text(value)
+            if cleaned != value:
+                fields[name] = cleaned
+        return replace(finding, **fields) if fields else finding
+
+    def value(self, value: Any) -> Any:
+        """Every string in a JSON-like value (a matrix row), scrubbed."""
+        if isinstance(value, str):
+            return self.text(value)
+        if isinstance(value, dict):
+            return {key: self.value(item) for key, item in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [self.value(item) for item in value]
+        return value
 
 
 # a tetrahedron (ASCII STL) and a one-joint robot that shows it: the readiness model

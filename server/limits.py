@@ -20,6 +20,9 @@ Environment variables (sizes accept a ``K``/``M``/``G`` suffix, powers of 1024):
 ``URDFLINT_MAX_TASKS``         jobs a worker runs before it is replaced (default 500)
 ``URDFLINT_TMPDIR``            where per-request folders are made (default: the system's
                                temporary folder, i.e. ``TMPDIR``)
+``URDFLINT_ALLOW_CONFIRM``     1 to accept the ``confirm`` option of ``/v1/check`` (load the
+                               upload in the installed simulation engines); what
+                               ``urdflint serve --allow-confirm`` sets (default 0: refused)
 
 The guard is a pure ASGI middleware, because FastAPI and Starlette put no limit on a
 request body (ecosystem notes §7.2): it refuses a ``Content-Length`` over the limit before
@@ -83,6 +86,7 @@ class Limits:
     worker_memory: int = 3 * 1024 * MiB
     max_tasks: int = 500
     tmpdir: str | None = None
+    allow_confirm: bool = False  # run the simulation engines on uploads (``confirm``)
 
     def __post_init__(self) -> None:
         if self.jobs <= 0:
@@ -133,6 +137,15 @@ def _float(text: str) -> float:
     return float(text)
 
 
+def _flag(text: str) -> bool:
+    value = text.strip().lower()
+    if value in ("1", "true", "yes", "on"):
+        return True
+    if value in ("0", "false", "no", "off"):
+        return False
+    raise ValueError(f"expected 1 or 0 (true or false), got {text!r}")
+
+
 ENV: dict[str, Callable[[str], Any]] = {
     "max_urdf_bytes": parse_size,
     "max_zip_bytes": parse_size,
@@ -145,6 +158,7 @@ ENV: dict[str, Callable[[str], Any]] = {
     "worker_memory": parse_size,
     "max_tasks": int,
     "tmpdir": str,
+    "allow_confirm": _flag,
 }
 
 

@@ -9,7 +9,9 @@ are applied by the CLI's own :class:`~urdflint.engine.options.SettingsFinder`, s
 
 ``select``, ``ignore``    rule codes, names or family letters
 ``fail_on``              error | warning | info | never  (decides ``passed``)
-``target``               gazebo-classic | gz-sim | mujoco
+``target``               gazebo-classic | gz-sim | mujoco | drake | pybullet | isaac |
+                         pinocchio | ros | all (every one); default gazebo-classic, or
+                         every target with ``matrix``
 ``expect_mass``          ``KG[±TOL]``, e.g. ``12.3`` or ``12.3±2%``
 ``expect_com``           ``X,Y,Z[±TOL]``
 ``xacro_args``           ``NAME:=VALUE`` pairs, e.g. ``a:=1,b:=2`` (a comma inside a value is
@@ -21,6 +23,21 @@ are applied by the CLI's own :class:`~urdflint.engine.options.SettingsFinder`, s
                          server's disk
 ``format``               json (default) | sarif | text | github
 ``svg``                  true to add ``"svg": {file: "<svg ...>"}`` (the kinematic tree)
+``matrix``               true to add ``"matrix"``: one row per target saying whether it loads
+                         the model, loads it with changes, refuses it or crashes, and the
+                         findings that decide it (as ``urdflint check --matrix``; without a
+                         ``target`` option every target is selected)
+``confirm``              engines to load the model in, as ``--confirm``: ``mujoco``,
+                         ``pybullet``, ``drake``, ``pinocchio`` or ``all``, comma-separated
+                         (E rules; with ``matrix``, each row's ``confirmed``; an engine with
+                         a compiled probe, sdformat, is never run here and says it is not
+                         installed; ``/v1/capabilities`` lists what runs). Refused (422)
+                         unless the server was started with ``urdflint serve
+                         --allow-confirm``: engines are heavy native code loading untrusted
+                         input. Each runs in its own process, with the worker's memory limit
+                         and a timeout, on a copy of the model whose file references point
+                         only into the upload; their time counts against the job's
+                         ``URDFLINT_TIMEOUT``. The ``confirm`` key of ``config`` is the same
 ``filename``             the name to show for a raw XML body (default ``robot.urdf``; a
                          ``.xacro`` name makes it a xacro file)
 
@@ -42,13 +59,19 @@ from urdflint.engine import options as values_of
 from urdflint.engine.config import Settings
 from urdflint.model import targets
 
-LISTS = ("select", "ignore", "target", "xacro_args", "q")
-SCALARS = ("fail_on", "expect_mass", "expect_com", "config", "format", "svg", "filename")
+LISTS = ("select", "ignore", "target", "xacro_args", "q", "confirm")
+SCALARS = (
+    "fail_on", "expect_mass", "expect_com", "config", "format", "svg", "matrix", "filename"
+)  # fmt: skip
 ALIASES = {"targets": "target", "xacro_arg": "xacro_args", "fail": "fail_on"}
 FORMATS = ("json", "sarif", "text", "github")
 TRUE = ("1", "true", "yes", "on")
 FALSE = ("0", "false", "no", "off", "")
 MAX_CONFIG_CHARS = 64 * 1024
+NO_CONFIRM = (
+    "confirm: this server does not load models in simulation engines (they are heavy native "
+    "code loading untrusted input); it must be started with 'urdflint serve --allow-confirm'"
+)
 
 
 class OptionError(ValueError):
@@ -61,6 +84,7 @@ class Options:
     fmt: str = "json"
     svg: bool = False
     filename: str | None = None
+    matrix: bool = False
 
 
 def canonical(name: str) -> str | None:
@@ -144,16 +168,36 @@ def _base(text: str | None) -> Settings:
         raise OptionError(f"config: {exc}") from None
 
 
-def parse(values: Mapping[str, list[str]]) -> Options:
-    """Validate the options and build the settings exactly as ``urdflint check`` would."""
+def _flag(values: Mapping[str, list[str]], key: str) -> bool:
+    text = (_last(values, key) or "").lower()
+    if text not in TRUE + FALSE:
+        raise OptionError(f"{key}: expected true or false, not {text!r}")
+    return text in TRUE
+
+
+def _engines(values: Mapping[str, list[str]]) -> list[tuple[str, ...]]:
+    """``confirm``: the engines, as ``--confirm`` groups (``[]`` when none are named)."""
+    names = _split(values.get("confirm", ()))
+    if not names:
+        return []
+    try:
+        return [values_of.engine_list(",".join(names))]
+    except argparse.ArgumentTypeError as exc:
+        raise OptionError(f"confirm: {exc}") from None
+
+
+def parse(values: Mapping[str, list[str]], allow_confirm: bool = False) -> Options:
+    """Validate the options and build the settings exactly as ``urdflint check`` would.
+
+    ``allow_confirm``: whether the server runs engines (``urdflint serve --allow-confirm``);
+    without it, engines named by ``confirm`` or the config's ``confirm`` key are a 422.
+    """
     fmt = (_last(values, "format") or "json").lower()
     if fmt not in FORMATS:
         raise OptionError(f"format: must be one of {', '.join(FORMATS)}, not {fmt!r}")
     if fmt == "sarif" and importlib.util.find_spec("urdflint.outputs.formatters.sarif") is None:
         raise OptionError("format: sarif is not available on this server")
-    svg_text = (_last(values, "svg") or "").lower()
-    if svg_text not in TRUE + FALSE:
-        raise OptionError(f"svg: expected true or false, not {svg_text!r}")
+    svg, matrix = _flag(values, "svg"), _flag(values, "matrix")
     fail_on = _last(values, "fail_on")
     if fail_on is not None and fail_on not in config.FAIL_ON:
         raise OptionError(f"fail_on: must be one of {', '.join(config.FAIL_ON)}, not {fail_on!r}")
@@ -174,6 +218,7 @@ def parse(values: Mapping[str, list[str]]) -> Options:
         expect_mass=_typed("expect_mass", _last(values, "expect_mass"), values_of.expect_mass),
         expect_com=_typed("expect_com", _last(values, "expect_com"), values_of.expect_com),
         q=q,
+        confirm=_engines(values),
         isolated=True,
         config=None,
     )
@@ -182,6 +227,9 @@ def parse(values: Mapping[str, list[str]]) -> Options:
         finder = values_of.SettingsFinder(args)
     except values_of.UsageError as exc:
         raise OptionError(str(exc).replace("--", "", 1)) from None
-    # the service never starts simulation engines on uploaded files (no --confirm here)
-    settings = dataclasses.replace(finder._apply(base), confirm=())
-    return Options(settings, fmt, svg_text in TRUE, _last(values, "filename"))
+    settings = finder._apply(base)
+    if settings.confirm and not allow_confirm:
+        raise OptionError(NO_CONFIRM)
+    if matrix and not target and settings.targets == targets.DEFAULT_TARGETS:
+        settings = dataclasses.replace(settings, targets=tuple(targets.TARGETS))  # every row
+    return Options(settings, fmt, svg, _last(values, "filename"), matrix)

@@ -8,7 +8,8 @@ module globals. Each worker runs one job at a time (``worker.main``); the pool
   heavy libraries (``_preload``), falling back to ``spawn`` where there is no fork server;
 - hands a job to an idle worker from a thread, so the event loop only awaits: ``/healthz``
   and the other requests are answered while models are linted;
-- kills the worker (SIGKILL) when a job overruns its time limit and raises
+- kills the worker (SIGKILL, with its process group: the engine processes of a ``confirm``
+  job) when a job overruns its time limit and raises
   :class:`JobTimeout`; a worker that dies on its own raises :class:`WorkerDied`. Either way a
   fresh worker takes the place, in the background, before the slot is given out again;
 - replaces a worker after ``max_tasks`` jobs, to bound slow leaks;
@@ -28,6 +29,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
+import os
 import signal
 import threading
 from collections.abc import Callable
@@ -86,7 +88,12 @@ class Worker:
             raise WorkerDied(code) from None
 
     def kill(self) -> None:
-        self.alive = False
+        """SIGKILL the worker and its process group: the engines it started (``confirm``)
+        die with it (``worker.main`` makes each worker the leader of its own group)."""
+        first, self.alive = self.alive, False
+        if first:  # once, while its pid (the group's id) is still known to be this worker's
+            with contextlib.suppress(OSError):
+                os.killpg(self.process.pid, signal.SIGKILL)
         with contextlib.suppress(Exception):
             self.process.kill()
         self.process.join(5)

@@ -3,7 +3,8 @@
 The URDF comes as a raw XML body (``application/xml``, ``text/xml``, ``*+xml``) or as the
 ``urdf`` part of a ``multipart/form-data`` form with an optional ``meshes`` zip; the options
 as query parameters or form fields (``options.py``). Each job runs in a per-request
-temporary folder that is removed afterwards.
+temporary folder that is removed afterwards; so do the engines of ``confirm``, which only
+a server started with ``--allow-confirm`` accepts (``confirming.py``).
 """
 
 from __future__ import annotations
@@ -19,6 +20,8 @@ from starlette.concurrency import run_in_threadpool
 from starlette.datastructures import UploadFile
 from starlette.exceptions import HTTPException
 
+from urdflint.model import targets
+
 from . import options as opts
 from .jobs import CheckJob
 from .pool import Busy, JobTimeout, WorkerDied
@@ -26,6 +29,7 @@ from .routing import error, limits_of, pool_of
 from .uploads import ZipLimits, urdf_name
 
 XML_TYPES = ("application/xml", "text/xml")
+TARGET_HELP = "|".join((*targets.TARGETS, targets.ALL))
 FORM_FIELD_BYTES = 128 * 1024
 
 CHECK_BODY = {
@@ -56,6 +60,15 @@ CHECK_BODY = {
                     "xacro_args": {"type": "string"},
                     "config": {"type": "string", "description": "JSON, [tool.urdflint] keys"},
                     "svg": {"type": "boolean"},
+                    "matrix": {
+                        "type": "boolean",
+                        "description": "add what each target does with the model",
+                    },
+                    "confirm": {
+                        "type": "string",
+                        "description": "engines to load the model in (mujoco, pybullet, drake, "
+                        "pinocchio, all); needs urdflint serve --allow-confirm",
+                    },
                 },
             }
         },
@@ -87,7 +100,7 @@ async def check(
     fail_on: Annotated[
         str | None, Query(description="error|warning|info|never: sets 'passed'")
     ] = None,
-    target: Annotated[list[str] | None, Query(description="gazebo-classic|gz-sim|mujoco")] = None,
+    target: Annotated[list[str] | None, Query(description=TARGET_HELP)] = None,
     expect_mass: Annotated[str | None, Query(description="KG[±TOL], as --expect-mass")] = None,
     expect_com: Annotated[str | None, Query(description="X,Y,Z[±TOL], as --expect-com")] = None,
     xacro_args: Annotated[list[str] | None, Query(description="NAME:=VALUE[,NAME:=VALUE]")] = None,
@@ -95,6 +108,13 @@ async def check(
     config: Annotated[str | None, Query(description="JSON object of [tool.urdflint] keys")] = None,
     format: Annotated[str, Query(description="json|sarif|text|github")] = "json",
     svg: Annotated[str | None, Query(description="true: add the kinematic tree as SVG")] = None,
+    matrix: Annotated[
+        str | None, Query(description="true: add what each target does with the model")
+    ] = None,
+    confirm: Annotated[
+        list[str] | None,
+        Query(description="engines to load the model in (needs serve --allow-confirm)"),
+    ] = None,
     filename: Annotated[str | None, Query(description="name shown for a raw XML body")] = None,
 ) -> Response:
     """Lint one URDF or xacro file (and its meshes) with the CLI's rules and options."""
@@ -107,7 +127,7 @@ async def check(
         if len(body) > limits.max_urdf_bytes:
             return error(413, "the URDF is over the size limit")
         values = opts.merge(request.query_params.multi_items())
-        options = opts.parse(values)
+        options = opts.parse(values, limits.allow_confirm)
         try:
             name = urdf_name(options.filename)
         except ValueError as exc:
@@ -148,7 +168,8 @@ async def _multipart(request: Request) -> Response:
                 return error(422, f"unexpected file part {key!r}")
             else:
                 fields.append((key, value))
-        options = opts.parse(opts.merge(request.query_params.multi_items(), fields))
+        values = opts.merge(request.query_params.multi_items(), fields)
+        options = opts.parse(values, limits.allow_confirm)
         if urdf is None or (isinstance(urdf, UploadFile) and not urdf.filename and not urdf.size):
             return error(422, "the form has no 'urdf' part (a .urdf or .xacro file)")
         if isinstance(urdf, UploadFile):
@@ -189,7 +210,16 @@ async def _lint(
             if size > limits.max_zip_bytes:
                 return error(413, "the meshes zip is over the size limit")
         job = CheckJob(
-            folder, name, data, archive, options.settings, options.fmt, options.svg, zip_limits
+            folder,
+            name,
+            data,
+            archive,
+            options.settings,
+            options.fmt,
+            options.svg,
+            zip_limits,
+            matrix=options.matrix,
+            timeout=limits.timeout,
         )
         try:
             answer = await pool.run(job)

@@ -1,4 +1,5 @@
-"""The probes and the rule catalogue: ``/healthz``, ``/readyz``, ``/version``, ``/v1/rules``.
+"""The probes and the catalogue: ``/healthz``, ``/readyz``, ``/v1/capabilities``,
+``/version``, ``/v1/rules``.
 
 ``/healthz`` is liveness only: 200 as long as the process answers, whatever the workers
 do (restarting a server whose workers are busy would not help). ``/readyz`` runs a
@@ -7,6 +8,8 @@ answer for :data:`READY_TTL` seconds (the cache lives in the app's ``state.readi
 it answers 503 with ``{"ready": false, "reason": ...}`` while the workers start, when they
 are all busy, and when they cannot start (the reason names the cause, e.g. an import
 error in the worker; the server then exits, see ``app.py``).
+Its ready answer also says whether ``confirm`` is allowed and which engines are installed,
+as ``/v1/capabilities`` does without a worker (for the web page and clients).
 """
 
 from __future__ import annotations
@@ -23,9 +26,12 @@ from fastapi.responses import JSONResponse
 from starlette.concurrency import run_in_threadpool
 
 from urdflint import __version__
-from urdflint.engine import docs, registry
+from urdflint.engine import config, docs, registry
+from urdflint.model import targets
 
+from . import options as opts
 from .jobs import ReadyJob
+from .limits import Limits
 from .pool import Busy, JobTimeout, WorkerDied
 from .routing import error, limits_of, pool_of
 
@@ -77,6 +83,7 @@ async def readyz(request: Request) -> JSONResponse:
     body = dict(cached["content"])
     body["workers"] = pool.stats()
     body["limits"] = limits.public()
+    body["confirm"] = confirm_info(limits)
     return JSONResponse(body, status_code=200 if cached["status"] == 200 else 503)
 
 
@@ -85,6 +92,45 @@ def _not_ready(request: Request, reason: str, retry: bool = True) -> JSONRespons
     body = {"ready": False, "reason": reason, "detail": reason}
     body["workers"] = pool_of(request).stats()
     return JSONResponse(body, status_code=503, headers={"Retry-After": "1"} if retry else None)
+
+
+@router.get("/v1/capabilities", tags=["probes"])
+async def capabilities(request: Request) -> dict[str, Any]:
+    """What this server offers ``POST /v1/check``, without touching the lint workers: the
+    targets, the formats, whether ``confirm`` is allowed (``urdflint serve
+    --allow-confirm``) and which engines are installed, and the limits."""
+    limits = limits_of(request)
+    return {
+        "version": __version__,
+        "targets": [
+            {"name": name, "label": targets.LABELS[name], "engine": targets.ENGINE[name]}
+            for name in targets.TARGETS
+        ],
+        "formats": list(opts.FORMATS),
+        "matrix": True,
+        "confirm": confirm_info(limits),
+        "limits": limits.public(),
+    }
+
+
+def confirm_info(limits: Limits) -> dict[str, Any]:
+    """``{"allowed": bool, "engines": {name: installed}}``: whether the ``confirm`` option is
+    accepted, and which engines can load a model here (a cheap ``find_spec`` each).
+
+    An engine with a compiled probe (sdformat: built with ``pkg-config`` and ``g++`` on
+    first use) is never run by the service, whose workers may not compile or start other
+    programs: it is reported as not installed, as its E001 note in an answer says.
+    """
+    from urdflint.engines import runner
+
+    native = set(getattr(runner, "NATIVE", ()))
+    engines: dict[str, bool] = {}
+    for engine in config.ENGINES:
+        try:
+            engines[engine] = engine not in native and runner.installed(engine)
+        except (KeyError, ImportError, ValueError):  # an engine the runner does not know yet
+            engines[engine] = False
+    return {"allowed": limits.allow_confirm, "engines": engines}
 
 
 @router.get("/version", tags=["probes"])

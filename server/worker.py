@@ -5,7 +5,9 @@ and kills it when a job overruns the request's time limit. Inside, besides urdfl
 confinement (``Context(root=...)``: the resolver, the mesh cache and xacro only see the
 request's folder), every job runs under an audit hook (PEP 578) that refuses, while the job
 runs, file access outside the request's folder and the Python installation, the network
-and new processes (``fence.py``). Each worker also gets an address-space limit
+and new processes (``fence.py``; with ``confirm``, only the engine probe: ``confirming.py``).
+Each worker leads its own process group, so killing it kills the engines it started; each
+also gets an address-space limit
 (``RLIMIT_AS``) and, per job, a CPU-time limit (``RLIMIT_CPU``) a little over the request
 timeout, as a second fence behind the pool's wall-clock kill.
 
@@ -16,6 +18,7 @@ and the fence's, are importable from here too.
 from __future__ import annotations
 
 import contextlib
+import os
 import traceback
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -69,6 +72,14 @@ class WorkerConfig:
     timeout: float = 60.0
 
 
+def own_process_group() -> None:
+    """Lead a process group of its own, so the pool's kill reaches the engines this worker
+    starts (``confirm``); and keep the current folder off their ``sys.path``."""
+    with contextlib.suppress(OSError):
+        os.setpgid(0, 0)
+    os.environ["PYTHONSAFEPATH"] = "1"
+
+
 def main(conn: Connection, config: WorkerConfig) -> None:
     """The worker loop: say ``"ready"`` (or ``("failed", reason)``), then receive a job and
     send its reply until ``None`` ends the loop. The pool starts it (``starting.BOOTSTRAP``).
@@ -76,6 +87,7 @@ def main(conn: Connection, config: WorkerConfig) -> None:
     try:
         limit_threads()
         set_memory_limit(config.memory)
+        own_process_group()
         with contextlib.suppress(ImportError):
             from . import _preload  # noqa: F401  (already imported when forked from the forkserver)
         install_fence()

@@ -2,7 +2,8 @@
 
 Each engine is used only when it is installed (``urdflint[engines]``); the others skip.
 The fixtures are in ``fixtures/engines/``; what each engine does with them was observed
-with mujoco 4.0.0, pybullet 3.2.7, drake 1.51.1 and pin 4.1.0.
+with mujoco 4.0.0, pybullet 3.2.7, drake 1.51.1, pin 4.1.0 and sdformat 12.3.0 (Debian's
+libsdformat-dev; more in tests/test_engines_sdformat.py).
 """
 
 from __future__ import annotations
@@ -31,23 +32,32 @@ PLATE = "/robot/link[@name='plate']"
 EXPECTED: dict[str, dict[str, set[tuple[int, str, str]]]] = {
     "good_arm": {},
     "undefined_link": {e: {(28, "E001", JOINT)} for e in ENGINES},
-    "negative_mass": {"drake": {(20, "E006", f"{ARM}/inertial"), (20, "E004", f"{ARM}/inertial")}},
+    "negative_mass": {
+        "drake": {(20, "E006", f"{ARM}/inertial"), (20, "E004", f"{ARM}/inertial")},
+        "sdformat": {(19, "E001", ARM)},
+    },
     "no_inertial": {"pybullet": {(19, "E006", ARM), (19, "E004", ARM)}},
     "inverted_limits": {
         "mujoco": {(13, "E003", ELBOW)},
         "pybullet": {(13, "E003", ELBOW)},
         "drake": {(2, "E005", "/robot")},
+        "sdformat": {(9, "E006", "/robot/joint[@name='elbow']"), (13, "E003", ELBOW)},
     },
     "triangle_inertia": {
         "mujoco": {(2, "E001", "/robot")},
         "pybullet": {(16, "E006", PLATE), (17, "E004", f"{PLATE}/inertial")},
         "drake": {(17, "E006", f"{PLATE}/inertial"), (17, "E004", f"{PLATE}/inertial")},
+        "sdformat": {(16, "E001", PLATE)},
     },
     "two_roots": {
         "pybullet": {(2, "E005", "/robot"), (3, "E006", "/robot/link[@name='base']")},
         "pinocchio": {(3, "E001", "/robot/link[@name='base']")},
+        "sdformat": {(3, "E001", "/robot/link[@name='base']")},
     },
-    "world_link": {"drake": {(3, "E002", WORLD), (3, "E006", WORLD)}},
+    "world_link": {
+        "drake": {(3, "E002", WORLD), (3, "E006", WORLD)},
+        "sdformat": {(3, "E002", WORLD)},
+    },
 }
 
 
@@ -65,7 +75,8 @@ def needs(engine: str):
 def test_each_engine_reports_what_it_does_with_the_model(engine: str, model: str) -> None:
     findings = confirmed(MODELS / f"{model}.urdf", engine)
     assert {(f.line, f.code, f.element) for f in findings} == EXPECTED[model].get(engine, set())
-    label = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "drake": "Drake"}.get(engine, "Pinocchio")
+    label = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "drake": "Drake",
+             "sdformat": "sdformat (Gazebo)"}.get(engine, "Pinocchio")  # fmt: skip
     assert all(f.message.startswith(label + " ") for f in findings)
 
 
@@ -89,7 +100,7 @@ def test_an_engine_that_is_not_installed_is_one_info_note(monkeypatch) -> None:
     findings = confirmed(MODELS / "undefined_link.urdf", *ENGINES)
     assert [(f.code, f.severity.name, f.element) for f in findings] == [
         ("E001", "INFO", "/robot")
-    ] * 4
+    ] * len(ENGINES)
     assert findings[0].message.endswith("is not installed: the model was not loaded in it")
 
 
@@ -152,8 +163,9 @@ def test_the_configuration_key_and_the_service() -> None:
     pytest.importorskip("fastapi")
     from urdflint.server import options as service
 
-    # the service never starts engines on uploaded files, whatever its config says
-    assert service.parse({"config": ['{"confirm": ["all"]}']}).settings.confirm == ()
+    # the service starts no engine on uploaded files unless started with --allow-confirm
+    with pytest.raises(service.OptionError, match="--allow-confirm"):
+        service.parse({"config": ['{"confirm": ["all"]}']})
 
 
 # fixture -> engine -> the E003 and E004 messages, as observed (Pinocchio keeps all four)
@@ -161,6 +173,8 @@ REPLACED = {
     "inverted_limits": {
         "mujoco": "MuJoCo built joint 'elbow' without limits (the URDF gives lower=1 upper=-1)",
         "pybullet": "PyBullet built joint 'elbow' without limits (the URDF gives lower=1 upper=-1)",
+        "sdformat": "sdformat (Gazebo) built joint 'elbow' with limits [-1, 1] (the URDF gives "
+        "lower=1 upper=-1)",
     },
     "negative_mass": {
         "drake": "Drake uses mass 1 kg and principal moments 0.00154 0.00154 0.00154 for link "
@@ -195,6 +209,7 @@ BUILT_LIMITS = {
     "mujoco": ("revolute", None, None),
     "pybullet": ("revolute", None, None),
     "pinocchio": ("revolute", 1.0, -1.0),
+    "sdformat": ("revolute", -1.0, 1.0),  # swapped, with a warning
 }
 
 

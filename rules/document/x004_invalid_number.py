@@ -35,6 +35,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
@@ -47,6 +49,7 @@ from urdflint.model.values import has_xacro
     "invalid-number",
     Severity.ERROR,
     fix='Write a plain decimal number (space-separated for vectors), e.g. xyz="0 0 0.1".',
+    effects={"": K.INVALID_NUMBER, "mass": K.INVALID_MASS},
 )
 def check(doc: Document) -> Iterator[Hit]:
     for el, attr, kind in attributes(doc.robot):
@@ -55,4 +58,9 @@ def check(doc: Document) -> Iterator[Hit]:
             continue
         why = malformed(value, kind)
         if why is not None:
-            yield Hit(el, f"<{el.tag}> {attr} {value!r} of {owner(el)} {why}", attribute=attr)
+            yield Hit(
+                el,
+                f"<{el.tag}> {attr} {value!r} of {owner(el)} {why}",
+                attribute=attr,
+                variant="mass" if el.tag == "mass" else "",
+            )

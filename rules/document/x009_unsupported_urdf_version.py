@@ -52,6 +52,7 @@ import re
 from collections.abc import Iterator
 
 from lxml import etree
+from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
@@ -100,6 +101,7 @@ def _parent_tag(el: etree._Element) -> str | None:
     "unsupported-urdf-version",
     Severity.ERROR,
     fix='Remove the version attribute or write version="1.0".',
+    effects={"": K.URDF_VERSION, "spelling": {}, "newer": K.NEWER_URDF_VERSION},
 )
 def check(doc: Document) -> Iterator[Hit]:
     raw = doc.robot.get("version")
@@ -125,6 +127,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 "only the exact string '1.0'",
                 fix='Write version="1.0" or remove the attribute.',
                 severity=Severity.WARNING,
+                variant="spelling",
             )
         return
     needed = [name for need, name in features(doc) if need <= version]
@@ -136,6 +139,7 @@ def check(doc: Document) -> Iterator[Hit]:
             f"{since} or later reads the model, older urdfdom and urdf_parser_py refuse it",
             fix=f'Keep version="{label}" only if every consumer uses urdfdom {since} or later.',
             severity=Severity.INFO,
+            variant="newer",
         )
     else:
         yield Hit(
@@ -143,4 +147,5 @@ def check(doc: Document) -> Iterator[Hit]:
             f"robot declares URDF {label} but uses none of its features; urdfdom before "
             f"{since} and urdf_parser_py refuse the model",
             severity=Severity.WARNING,
+            variant="newer",
         )

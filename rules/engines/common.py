@@ -7,8 +7,11 @@ from typing import Any
 from urdflint.model.document import Document
 from urdflint.model.providers import provided
 
-LABELS = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "drake": "Drake", "pinocchio": "Pinocchio"}
+LABELS = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "drake": "Drake", "pinocchio": "Pinocchio",
+          "sdformat": "sdformat (Gazebo)"}  # fmt: skip
 EXTRA = "pip install 'urdflint[engines]'"
+# engines that are not Python packages: how to install them instead of EXTRA
+INSTALL = {"sdformat": "install libsdformat-dev (sdformat12, found by pkg-config) and g++"}
 
 
 def outcomes(doc: Document) -> list[Any]:
@@ -20,3 +23,8 @@ def outcomes(doc: Document) -> list[Any]:
 
 def label(engine: str) -> str:
     return LABELS.get(engine, engine)
+
+
+def install(engine: str) -> str:
+    """How to install ``engine``."""
+    return INSTALL.get(engine, EXTRA)

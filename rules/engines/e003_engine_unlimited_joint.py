@@ -5,15 +5,18 @@ Compares the `lower` and `upper` of each `revolute` or `prismatic` joint's `<lim
 the position limits of the joint each engine built: MuJoCo's `jnt_limited` and
 `jnt_range`, PyBullet's `getJointInfo` lower and upper limits (PyBullet treats
 lower > upper as "no limit"), Drake's `position_lower_limits` and
-`position_upper_limits` (infinite: no limit) and Pinocchio's `lowerPositionLimit` and
-`upperPositionLimit`. A joint built without limits, or with limits that differ from the
-file's by more than 1e-9 (relative), is reported on its `<limit>` (at `lower`).
+`position_upper_limits` (infinite: no limit), Pinocchio's `lowerPositionLimit` and
+`upperPositionLimit`, and the `<limit>` of the joint's axis in the model sdformat
+converted (its "no limit" defaults, ±1e16, count as none). A joint built without limits,
+or with limits that differ from the file's by more than 1e-9 (relative), is reported on
+its `<limit>` (at `lower`).
 
 With inverted limits (`lower="1" upper="-1"`) MuJoCo 4.0 and PyBullet 3.2.7 build an
 unlimited joint, Drake 1.51 aborts (`Joint(): condition '(pos_lower_limits.array() <=
 pos_upper_limits.array()).all()' failed`, E005) and Pinocchio 4.1 keeps the inverted range
-as given (not reported: it is what the file says). J009 reports the inverted range
-itself.
+as given (not reported: it is what the file says); sdformat 12.3 swaps the two, with a
+warning (E006: "urdf2sdf: revolute joint [elbow] with limits: lowStop[1] > highStop[-1],
+switching the two."), and builds [-1, 1]. J009 reports the inverted range itself.
 
 Without `--confirm` E003 does nothing.
 
@@ -87,4 +90,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"{label(outcome.engine)} built joint {joint.name!r} {describe(lower, upper)} "
                 f"(the URDF gives lower={wanted[0]:g} upper={wanted[1]:g})",
                 attribute="lower",
+                engine=outcome.engine,
             )

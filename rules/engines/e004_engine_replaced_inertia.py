@@ -14,6 +14,17 @@ Only links on a moving joint are compared (a fixed base has no dynamics). MuJoCo
 (`fusestatic`) and Pinocchio merge a link on a `fixed` joint into its parent, so for
 them a link with such a child is not compared either.
 
+sdformat (Gazebo's URDF converter) lumps each link on a `fixed` joint into its parent
+too, and its link then carries the combined mass and inertia. For sdformat each link on
+a moving joint is compared with that combination, worked out from the file (masses
+summed, inertias moved to the common centre of mass with the parallel-axis theorem, as
+sdformat's `ReduceInertialToParent` does), so a lumped body is checked rather than
+skipped; the message then names the links it combines. sdformat 12.3 never substitutes
+an inertia: it refuses a link whose (combined) inertia is invalid, "A link named ... has
+invalid inertia." (E001), for a negative mass or moment, a tensor that is not positive
+definite or moments that break the triangle inequality; and it drops a link without mass
+(E002). So an E004 for sdformat means its lumping disagrees with the file.
+
 Observed with the engines this was written against:
 
 - negative mass (`-1`, I002): PyBullet 3.2.7 and Pinocchio 4.1 keep it (not reported:
@@ -47,8 +58,10 @@ from collections.abc import Iterator
 from urdflint.rules.engines.common import label, outcomes
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import bodies
 from urdflint.model.document import Document, Link
 from urdflint.model.finding import Severity
+from urdflint.model.inertia import eigenvalues as principal
 from urdflint.model.values import parse_number
 
 TOLERANCE = 1e-6
@@ -68,6 +81,18 @@ def declared(link: Link) -> tuple[float, tuple[float, ...]] | None:
     if value is None or any(p is None for p in parts):
         return None
     return value, eigenvalues(*(float(p or 0.0) for p in parts))
+
+
+def combined(doc: Document, link: Link) -> tuple[float, tuple[float, ...]] | None:
+    """The mass and principal moments of ``link`` with every link sdformat lumps into it;
+    ``None`` when one of them is malformed or the total mass is not positive."""
+    found = bodies(doc).inertia(link.name or "")
+    return None if found is None else (found[0], tuple(principal(found[2])))
+
+
+def lumps(doc: Document, link: Link) -> list[str]:
+    """The other links sdformat merges into ``link``."""
+    return [name for name, _, _ in bodies(doc).members(link.name or "")[1:]]
 
 
 def eigenvalues(
@@ -125,7 +150,8 @@ def check(doc: Document) -> Iterator[Hit]:
         if not outcome.built:
             continue
         for link in compared(doc, outcome.engine):
-            wanted = declared(link)
+            merged = lumps(doc, link) if outcome.engine == "sdformat" else []
+            wanted = combined(doc, link) if merged else declared(link)
             built = outcome.inertias.get(link.name or "")
             if wanted is None or built is None:
                 continue
@@ -135,9 +161,12 @@ def check(doc: Document) -> Iterator[Hit]:
                 differs(a, b, scale) for a, b in zip(sorted(built[1]), wanted[1], strict=True)
             ):
                 continue
-            given = "none" if link.inertial is None else describe(*wanted)
+            given = "none" if link.inertial is None and not merged else describe(*wanted)
+            if merged:
+                given += f" with {', '.join(repr(m) for m in merged)} lumped in"
             yield Hit(
                 link.inertial if link.inertial is not None else link.element,
                 f"{label(outcome.engine)} uses {describe(*built)} for link {link.name!r} "
                 f"(the URDF gives {given})",
+                engine=outcome.engine,
             )

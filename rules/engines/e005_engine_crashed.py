@@ -1,13 +1,13 @@
 """An engine named by `--confirm` crashed, aborted or hung while loading the model.
 
 ## What it does
-Each engine loads the model in its own process (`python -m urdflint.engines.probe`),
-with a memory limit (3 GiB of address space on POSIX) and a 60 s timeout. E005 reports
-a process that died by a signal (a segmentation fault, an `abort()`), exited without
-reporting what it built, or did not finish in time. For example PyBullet 3.2.7 prints
-"URDF file with multiple root links found" and then dies with SIGSEGV on a model with
-two root links. The finding is on `<robot>`; the message says how the process ended
-and the last error the engine printed.
+Each engine loads the model in its own process (`python -m urdflint.engines.probe`; for
+sdformat a small compiled program that calls `sdf::Root::Load`), with a memory limit
+(3 GiB of address space on POSIX) and a 60 s timeout. E005 reports a process that died by
+a signal (a segmentation fault, an `abort()`), exited without reporting what it built, or
+did not finish in time. For example PyBullet 3.2.7 prints "URDF file with multiple root
+links found" and then dies with SIGSEGV on a model with two root links. The finding is on
+`<robot>`; the message says how the process ended and the last error the engine printed.
 
 Without `--confirm` E005 does nothing.
 
@@ -42,4 +42,4 @@ def check(doc: Document) -> Iterator[Hit]:
     for outcome in outcomes(doc):
         if outcome.crash is not None:
             yield Hit(None, f"{label(outcome.engine)} crashed loading the model: the process "
-                      f"{outcome.crash}")  # fmt: skip
+                      f"{outcome.crash}", engine=outcome.engine)  # fmt: skip

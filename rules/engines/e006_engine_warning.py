@@ -11,6 +11,11 @@ distinct warning once, on the element it names by line or by name, else on `<rob
   re-express as a central inertia.
 - urdfdom's `Warning:` lines (Pinocchio), and MuJoCo's `WARNING:` lines (its
   `MUJOCO_LOG.TXT`).
+- sdformat's `Warning [file:line]` console lines (`sdfwarn`), e.g. "urdf2sdf: revolute
+  joint [elbow] with limits: lowStop[1] > highStop[-1], switching the two." or
+  "Non-unique name[arm] detected 2 times in XML children of model". Its debug log
+  (`sdfdbg`, which alone says that a massless link was "not modeled in sdf") is not read:
+  E002 reports those links.
 
 Without `--confirm` E006 does nothing.
 
@@ -43,4 +48,8 @@ from urdflint.model.finding import Severity
 def check(doc: Document) -> Iterator[Hit]:
     for outcome in outcomes(doc):
         for warning in outcome.warnings:
-            yield Hit(warning.element, f"{label(outcome.engine)} warns: {warning.text}")
+            yield Hit(
+                warning.element,
+                f"{label(outcome.engine)} warns: {warning.text}",
+                engine=outcome.engine,
+            )

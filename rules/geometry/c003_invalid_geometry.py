@@ -54,6 +54,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from lxml import etree
+from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, children
@@ -72,7 +73,7 @@ DIMENSIONS = {
 }
 
 
-@rule("C003", "invalid-geometry", Severity.ERROR)
+@rule("C003", "invalid-geometry", Severity.ERROR, effects={"degenerate": K.DEGENERATE_SHAPE})
 def check(doc: Document) -> Iterator[Hit]:
     for link in doc.links:
         for owner in children(link.element, "visual") + children(link.element, "collision"):
@@ -172,6 +173,7 @@ def _dimensions(shape: etree._Element, where: str) -> Iterator[Hit]:
                 shape,
                 f"{kind} of the {where} has {attr} {' '.join(fmt(v) for v in values)}",  # type: ignore[arg-type]
                 fix=f"Make every {attr} positive (metres).",
+                variant="degenerate",
             )
 
 

@@ -51,8 +51,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q
 from urdflint.sources.meshes import FileRef, references, unresolved
@@ -61,7 +64,7 @@ FIX_PACKAGE = "Pass --package-path NAME=DIR or set package-paths in the configur
 FIX_FILE = "Correct the filename (case matters) or add the mesh file."
 
 
-@rule("C004", "mesh-not-found", Severity.ERROR, fix=FIX_FILE)
+@rule("C004", "mesh-not-found", Severity.ERROR, fix=FIX_FILE, effects=single(K.MISSING_MESH))
 def check(doc: Document) -> Iterator[Hit]:
     refs = [
         FileRef(ref.element, ref.uri, f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}")

@@ -36,7 +36,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model import effects as fx
 from urdflint.model.document import Document
+from urdflint.model.effects import Effect
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q
 from urdflint.model.targets import LABELS
@@ -55,6 +57,13 @@ READS = {
     "unsupported-mesh-format",
     Severity.WARNING,
     fix="Convert the mesh to STL or OBJ, which every target reads.",
+    effects={
+        "": {
+            "mujoco": fx.refused("unknown mesh file type"),
+            "gazebo-classic": fx.no_geometry("the mesh is not shown or collided with"),
+            "gz-sim": fx.no_geometry("the mesh is not shown or collided with"),
+        }
+    },
 )
 def check(doc: Document) -> Iterator[Hit]:
     targets = [t for t in TARGET_FORMATS if t in doc.targets]
@@ -79,6 +88,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 ref.element,
                 f"{what} {kind}, which {labels} cannot load",
                 severity=severity,
+                effects=effects(failing),
             )
             continue
         labels = " and ".join(LABELS[t] for t in failing)
@@ -87,7 +97,18 @@ def check(doc: Document) -> Iterator[Hit]:
             ref.element,
             f"{labels} cannot load {format_name(ext)} {what} ({reads})",
             severity=severity,
+            effects=effects(failing),
         )
+
+
+def effects(failing: list[str]) -> dict[str, Effect]:
+    """MuJoCo refuses the model; Gazebo loads it without the mesh."""
+    return {
+        t: fx.refused("unknown mesh file type")
+        if t == "mujoco"
+        else fx.no_geometry("the mesh is not shown or collided with")
+        for t in failing
+    }
 
 
 def _mujoco_keeps_visuals(doc: Document) -> bool:

@@ -65,17 +65,20 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
+from urdflint.model import massless
 from urdflint.model.bodies import (
     LUMPING,
     MOVABLE,
     Verdict,
     gazebo_verdict,
-    massless_verdict,
     mujoco_verdict,
     selected,
 )
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.targets import gazebo_label
 
@@ -87,13 +90,14 @@ SHOWN = 3
     "missing-inertial",
     Severity.ERROR,
     fix="Add an <inertial> with the link's real mass, centre of mass and inertia.",
+    effects=single(K.MISSING_INERTIAL),
 )
 def check(doc: Document) -> Iterator[Hit]:
     found: dict[str, Verdict] = {}
     for name, link in doc.link_map.items():
         if link.inertial is not None or not doc.graph.parent_joints.get(name):
             continue
-        verdict = massless_verdict(doc, name, declared=False)
+        verdict = massless.verdict(doc, name, declared=False)
         if verdict is not None:
             found[name] = verdict
     if len(found) > 1 and all(link.inertial is None for link in doc.links):
@@ -104,6 +108,7 @@ def check(doc: Document) -> Iterator[Hit]:
             doc.link_map[name].element,
             f"link '{name}' has no <inertial>, so {verdict.consequence}",
             severity=verdict.severity,
+            effects=massless.effects(doc, name, declared=False),
         )
 
 

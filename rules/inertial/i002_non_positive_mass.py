@@ -42,14 +42,23 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies, impossible_severity, massless_verdict, welded_note
+from urdflint.model import massless
+from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.values import fmt
 
 
-@rule("I002", "non-positive-mass", Severity.ERROR, fix="Write the link's real mass in kilograms.")
+@rule(
+    "I002",
+    "non-positive-mass",
+    Severity.ERROR,
+    fix="Write the link's real mass in kilograms.",
+    effects={"negative": K.NEGATIVE_MASS, "zero": K.ZERO_MASS},
+)
 def check(doc: Document) -> Iterator[Hit]:
     for name, inertial in bodies(doc).inertials.items():
         if inertial is None or inertial.mass is None or inertial.mass > 0:
@@ -58,13 +67,21 @@ def check(doc: Document) -> Iterator[Hit]:
             severity = impossible_severity(doc, name)
             message = f"link '{name}' has mass {fmt(inertial.mass)} kg"
             message += welded_note(doc, name, severity)
-            yield Hit(inertial.mass_element, message, attribute="value", severity=severity)
+            yield Hit(
+                inertial.mass_element,
+                message,
+                attribute="value",
+                severity=severity,
+                variant="negative",
+            )
             continue
-        verdict = massless_verdict(doc, name)
+        verdict = massless.verdict(doc, name)
         if verdict is not None:
             yield Hit(
                 inertial.mass_element,
                 f"link '{name}' has mass 0 kg, so {verdict.consequence}",
                 severity=verdict.severity,
                 attribute="value",
+                effects=massless.effects(doc, name, declared=True),
+                variant="zero",
             )

@@ -41,9 +41,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import COMPONENTS, ZERO_MOMENT, judge, principal_moments
 from urdflint.model.values import fmt
@@ -54,6 +57,7 @@ from urdflint.model.values import fmt
     "non-positive-moment",
     Severity.ERROR,
     fix="Use the real inertia tensor (CAD, or the formula of a matching primitive).",
+    effects=single(K.BAD_TENSOR),
 )
 def check(doc: Document) -> Iterator[Hit]:
     b = bodies(doc)

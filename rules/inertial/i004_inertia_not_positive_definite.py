@@ -38,9 +38,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import Bodies, bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import principal_moments, tolerance
 from urdflint.model.values import fmt
@@ -51,6 +54,7 @@ from urdflint.model.values import fmt
     "inertia-not-positive-definite",
     Severity.ERROR,
     fix="Re-export the tensor about the centre of mass, in the inertial origin frame.",
+    effects=single(K.BAD_TENSOR),
 )
 def check(doc: Document) -> Iterator[Hit]:
     b = bodies(doc)

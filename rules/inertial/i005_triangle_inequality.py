@@ -36,9 +36,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import principal_moments, tolerance
 from urdflint.model.values import fmt
@@ -49,6 +52,7 @@ from urdflint.model.values import fmt
     "triangle-inequality",
     Severity.ERROR,
     fix="Recompute the tensor from the geometry and mass, or balance the moments.",
+    effects=single(K.BAD_TENSOR),
 )
 def check(doc: Document) -> Iterator[Hit]:
     for name, inertial in bodies(doc).inertials.items():

@@ -32,6 +32,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import GAZEBO_MASSLESS, LUMPING, bodies, gazebo_verdict, selected
 from urdflint.model.document import Document
@@ -40,7 +42,13 @@ from urdflint.model.inertia import TINY_MOMENT, judge, principal_moments
 from urdflint.model.values import fmt
 
 
-@rule("I010", "tiny-inertial", Severity.WARNING, fix="Give the link its real mass and inertia.")
+@rule(
+    "I010",
+    "tiny-inertial",
+    Severity.WARNING,
+    fix="Give the link its real mass and inertia.",
+    effects={"mass": K.TINY_MASS, "merged": {}},
+)
 def check(doc: Document) -> Iterator[Hit]:
     b = bodies(doc)
     for name, inertial in b.inertials.items():
@@ -54,6 +62,7 @@ def check(doc: Document) -> Iterator[Hit]:
                     f"link '{name}' has mass {fmt(inertial.mass)} kg, which sdformat before "
                     f"9.10.1 and 12.7.2 counts as zero, so {verdict.consequence}",
                     severity=verdict.severity,
+                    variant="mass" if verdict.kind == "drop" else "merged",
                 )
             continue
         if inertial.tensor is None:

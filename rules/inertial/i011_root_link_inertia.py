@@ -24,6 +24,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies
 from urdflint.model.document import Document
@@ -36,6 +38,7 @@ from urdflint.model.values import fmt
     "root-link-inertia",
     Severity.INFO,
     fix="Add a massless root link and attach this link to it with a fixed joint.",
+    effects={"": K.ROOT_INERTIA, "world": K.WORLD_INERTIA},
 )
 def check(doc: Document) -> Iterator[Hit]:
     root = doc.graph.root
@@ -44,4 +47,5 @@ def check(doc: Document) -> Iterator[Hit]:
         yield Hit(
             inertial.element,
             f"root link '{root}' has an <inertial> of {fmt(inertial.mass)} kg, which KDL ignores",
+            variant="world" if root == "world" else "",
         )

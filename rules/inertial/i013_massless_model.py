@@ -51,9 +51,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.targets import GAZEBO, gazebo_label
 
@@ -64,6 +67,7 @@ from urdflint.model.targets import GAZEBO, gazebo_label
     Severity.ERROR,
     fix="Give the base link its mass, or fix a massive base link to a massless root.",
     targets=GAZEBO,
+    effects=single(K.MASSLESS_MODEL),
 )
 def check(doc: Document) -> Iterator[Hit]:
     root = doc.graph.root

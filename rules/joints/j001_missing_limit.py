@@ -34,6 +34,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
@@ -46,6 +48,7 @@ from urdflint.model.values import fmt
     "missing-limit",
     Severity.ERROR,
     fix='Add <limit lower=".." upper=".." effort=".." velocity=".."/> with all four attributes.',
+    effects={"no-limit": K.NO_LIMIT, "no-effort-or-velocity": K.NO_EFFORT_OR_VELOCITY},
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
@@ -55,6 +58,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 yield Hit(
                     joint.element,
                     f"{J.label(joint)} has no <limit>; urdfdom refuses the model",
+                    variant="no-limit",
                 )
             continue
         missing = [a for a in ("effort", "velocity") if not lim.has(a)]
@@ -64,6 +68,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"<limit> of {J.label(joint)} has no {' and no '.join(missing)}; "
                 "urdfdom refuses the model",
                 fix="Add both effort and velocity: urdfdom requires them on every <limit>.",
+                variant="no-effort-or-velocity",
             )
         if joint.type in J.BOUNDED:
             bounds = [a for a in ("lower", "upper") if not lim.has(a)]

@@ -24,9 +24,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document, children
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 
 
@@ -35,6 +38,7 @@ from urdflint.model.finding import Severity
     "calibration-ignored",
     Severity.INFO,
     fix="Delete <calibration> unless a calibration controller on the real robot reads it.",
+    effects=single(K.CALIBRATION),
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:

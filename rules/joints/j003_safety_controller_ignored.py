@@ -27,9 +27,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document, children
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 
 
@@ -38,6 +41,7 @@ from urdflint.model.finding import Severity
     "safety-controller-ignored",
     Severity.INFO,
     fix="If simulation must respect the soft limits, narrow <limit lower/upper> to them.",
+    effects=single(K.SAFETY_CONTROLLER),
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:

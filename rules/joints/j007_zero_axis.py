@@ -27,9 +27,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 
 
@@ -38,6 +41,7 @@ from urdflint.model.finding import Severity
     "zero-axis",
     Severity.ERROR,
     fix='Give the direction of motion, e.g. <axis xyz="0 0 1"/>, or make the joint fixed.',
+    effects=single(K.ZERO_AXIS),
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:

@@ -27,6 +27,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
@@ -39,6 +41,7 @@ from urdflint.model.values import fmt
     "non-unit-axis",
     Severity.WARNING,
     options={"tolerance": 1e-3},
+    effects={"": K.NON_UNIT_AXIS, "prismatic": K.NON_UNIT_PRISMATIC},
 )
 def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
     tolerance = float(opts["tolerance"])
@@ -58,4 +61,5 @@ def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
             f"{J.label(joint)} has axis {J.fmt_vector(vec)} of length {fmt(length)}; "
             f"normalised it is {unit}",
             fix=f'Write <axis xyz="{unit}"/>.',
+            variant="prismatic" if joint.type == "prismatic" else "",
         )

@@ -35,6 +35,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
@@ -47,6 +49,7 @@ from urdflint.model.values import fmt
     "inverted-limits",
     Severity.ERROR,
     fix="Swap lower and upper so that lower < upper.",
+    effects={"inverted": K.INVERTED_LIMITS, "equal": K.EQUAL_LIMITS},
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
@@ -62,6 +65,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"{J.label(joint)} has lower {fmt(lim.lower)} {unit} above upper "
                 f"{fmt(lim.upper)} {unit}",
                 attribute="lower",
+                variant="inverted",
             )
         elif lim.lower == lim.upper:
             yield Hit(
@@ -69,4 +73,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"{J.label(joint)} has lower = upper = {fmt(lim.lower)} {unit}, so it cannot move",
                 fix='Use type="fixed" for a joint that must not move, or give it its real range.',
                 severity=Severity.WARNING,
+                variant="equal",
             )

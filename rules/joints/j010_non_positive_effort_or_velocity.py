@@ -41,6 +41,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
@@ -53,6 +55,7 @@ from urdflint.model.values import fmt
     "non-positive-effort-or-velocity",
     Severity.ERROR,
     fix="Write the actuator's real, positive effort and velocity limits.",
+    effects={"negative": K.NEGATIVE_EFFORT, "zero": K.ZERO_EFFORT_OR_VELOCITY},
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
@@ -70,7 +73,11 @@ def check(doc: Document) -> Iterator[Hit]:
         bad = negative + ([] if J.is_mimic(joint) else zero)
         listed = " and ".join(f"{a} {fmt(v + 0.0)} {u}" for a, v, u in bad)
         if negative:
-            yield Hit(lim.element, f"{J.label(joint)} has {listed}; a limit cannot be negative")
+            yield Hit(
+                lim.element,
+                f"{J.label(joint)} has {listed}; a limit cannot be negative",
+                variant="negative",
+            )
         else:
             why = (
                 "so no controller can drive it in Gazebo"
@@ -82,4 +89,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"{J.label(joint)} has {listed}, {why}",
                 fix="Write the real limits; suppress J010 with a reason if the joint is passive.",
                 severity=Severity.WARNING,
+                variant="zero",
             )

@@ -1,75 +1,111 @@
-"""A `planar` or `floating` joint, which Gazebo's URDF converter drops.
+"""A `planar` or `floating` joint, which a selected target drops, converts or refuses.
 
 ## What it does
-Reports `planar` joints (error) and `floating` joints (warning) when the targets
-include Gazebo Classic or Gazebo Sim. These are the only targets so far, so the
-rule currently always applies.
+Reports `planar` and `floating` joints for the selected targets that do not build
+them as written; the severity is that of the worst consequence among them (see
+"What each target does" below): an error for Gazebo (the model is refused), Isaac Sim
+(no planar joint) and MuJoCo (a floating joint below a moving body); a warning for
+PyBullet (a floating joint becomes fixed) and ROS (KDL makes both fixed). MuJoCo, Drake
+and Pinocchio build a planar joint; Drake leaves a floating child as a free body with a
+warning (info).
 
 ## Why is this bad?
-Gazebo reads URDF through sdformat's converter (`parser_urdf.cc`,
-`CreateJoint`). The converter maps `floating` and `planar` to no SDF joint type
-and writes no joint at all, with no message. The child link stays in the model
-unattached, as a free body, and the joint's `<origin>` is not applied to it
-(gazebosim/sdformat#1282, open):
+Gazebo reads URDF through sdformat's converter (`parser_urdf.cc`, `CreateJoint`). The
+converter maps `floating` and `planar` to no SDF joint type and writes no joint at all,
+so the joint's `<origin>` is lost (gazebosim/sdformat#1282, open). sdformat 12.3
+(observed, Gazebo Fortress) then refuses the converted model: the child link's pose is
+written relative to the joint that was not written ("relative_to name[J] specified by
+link with name[L] does not match a nested model, link, joint, or frame name").
 
-- **planar**: the link was meant to move in a plane (x, y and yaw). In Gazebo
-  it has all six degrees of freedom and falls or drifts out of the plane. The
-  model loads, but it behaves like a different robot, so this is an error.
-- **floating**: six degrees of freedom were meant, and a free body has them, so
-  the motion is right. But the link starts at the parent's frame instead of the
-  joint's origin, and no joint exists for plugins, controllers or joint states
-  to address.
-
-Other consumers differ: MuJoCo builds both types (three joints for planar, a
-free joint for floating), Drake supports planar but leaves a floating child as
-a free body with a warning, and KDL and `robot_state_publisher` treat both as
-fixed.
+- MuJoCo builds a planar joint (three joints) and a floating joint as a free joint, but
+  only on a body at the top level: below a moving body it refuses the model ("free joint
+  can only be used on top level"); a body welded to the static root counts as top level.
+- PyBullet 3.2.7 builds a floating joint as a fixed one ("joint unsupported, creating a
+  fixed joint instead"): the body meant to be free is welded.
+- Drake builds a planar joint; for a floating one it warns ("not supported by
+  MultibodyPlant. Leaving 'L' as a free body"), which is what a floating joint means.
+- Isaac Sim's importer (source, v5.1) has no planar joint (its README says so; the import
+  fails on a null joint prim) and drops floating joints, leaving a free body.
+- kdl_parser converts both to fixed joints ("Converting unknown joint type of joint 'J'
+  into a fixed joint"), so `robot_state_publisher` never moves them; MoveIt builds both
+  as multi-DOF joints.
 
 ## How to fix
-For planar motion in Gazebo, replace the joint with two `prismatic` joints and
-one `continuous` joint through intermediate massless links (give each a small
-`<inertial>`), or drive the base with a planar-move plugin. For a floating
-body, remove the joint and spawn the link as a separate model, or keep the
-joint and accept that Gazebo places the child at the parent's origin.
+For planar motion, replace the joint with two `prismatic` joints and one `continuous`
+joint through intermediate links (give each a small `<inertial>`), or drive the base with
+a planar-move plugin. For a floating body, remove the joint and spawn the link as a
+separate model.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model import targets
-from urdflint.model.document import Document
+from urdflint.model.document import Document, Joint
+from urdflint.model.effects import Effect
 from urdflint.model.finding import Severity
-from urdflint.model.targets import gazebo_label
 
-GAZEBO_TARGETS = frozenset({"gazebo-classic", "gz-sim"})
+FIXES = {
+    "planar": "Replace the joint with two prismatic joints and a continuous one through "
+    "intermediate links (each with a small <inertial>), or drive the base with a plugin.",
+    "floating": "Spawn the floating link as a model of its own, or remove the joint.",
+}
 
 
 @rule(
     "J012",
     "unsupported-joint-type-for-target",
     Severity.ERROR,
-    fix="Replace the joint with supported joints (prismatic/continuous chain) or a Gazebo plugin.",
-    targets=targets.GAZEBO,
+    fix=FIXES["planar"],
+    effects={"planar": K.PLANAR, "floating": {**K.FLOATING, "mujoco": K.FLOATING_MUJOCO}},
+    by_target=True,
 )
 def check(doc: Document) -> Iterator[Hit]:
-    if not doc.targets & GAZEBO_TARGETS:
-        return
-    gazebo = gazebo_label(doc.targets & GAZEBO_TARGETS)
+    chosen = targets.ordered(doc.targets)
     for joint in doc.joints:
-        if joint.type == "planar":
-            yield Hit(
-                joint.element,
-                f"{J.label(joint)} is dropped by {gazebo}'s URDF converter; link "
-                f"'{joint.child}' becomes a free 6-DOF body instead of moving in a plane",
-            )
-        elif joint.type == "floating":
-            yield Hit(
-                joint.element,
-                f"{J.label(joint)} is dropped by {gazebo}'s URDF converter; link "
-                f"'{joint.child}' becomes a free body placed without the joint's <origin>",
-                fix="Spawn the floating link as a model of its own, or remove the joint.",
-                severity=Severity.WARNING,
-            )
+        if joint.type not in FIXES:
+            continue
+        table = effects(doc, joint)
+        found = {t: table[t] for t in chosen if t in table}
+        if not found:
+            continue
+        yield Hit(
+            joint.element,
+            f"{J.label(joint)}: " + "; ".join(_sentences(found)),
+            fix=FIXES[joint.type],
+            variant=joint.type,
+            effects=found,
+        )
+
+
+def effects(doc: Document, joint: Joint) -> dict[str, Effect]:
+    """What each target does with the planar or floating ``joint``: MuJoCo accepts a free
+    joint only on a body of the top level (a child of the static root or world)."""
+    if joint.type == "planar":
+        return dict(K.PLANAR)
+    table = dict(K.FLOATING)
+    link, seen = joint.parent, set()
+    while link is not None and link not in seen:  # up through fixed joints: MuJoCo fuses them
+        seen.add(link)
+        above = doc.graph.parent_joint(link)
+        if above is None or above.type != "fixed":
+            break
+        link = above.parent
+    if link is None or doc.graph.parent_joint(link) is not None:
+        table["mujoco"] = K.FLOATING_MUJOCO
+    return table
+
+
+def _sentences(found: dict[str, Effect]) -> list[str]:
+    """``Gazebo Classic and Gazebo Sim: the converter writes no joint...`` (targets with the
+    same detail share a sentence)."""
+    by_detail: dict[str, list[str]] = {}
+    for target, effect in found.items():
+        text = effect.detail or effect.consequence.phrase
+        by_detail.setdefault(text, []).append(targets.LABELS[target])
+    return [f"{' and '.join(labels)}: {text}" for text, labels in by_detail.items()]

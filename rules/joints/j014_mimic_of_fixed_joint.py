@@ -49,6 +49,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
@@ -68,6 +70,7 @@ def _dof(kind: str) -> str:
     "mimic-of-fixed-joint",
     Severity.ERROR,
     fix="Point the mimic at a revolute, continuous or prismatic joint, or remove it.",
+    effects={"": K.MIMIC_DOF, "ignored": {}, "floating": K.MIMIC_OF_FLOATING},
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
@@ -81,7 +84,9 @@ def check(doc: Document) -> Iterator[Hit]:
         hit = _judge(joint.type, leader.type, q(joint.name), repr(target))
         if hit is not None:
             message, severity = hit
-            yield Hit(mimic, message, severity=severity, attribute="joint")
+            variant = "ignored" if message.endswith("the mimic is ignored") else ""
+            variant = "floating" if joint.type == "floating" else variant
+            yield Hit(mimic, message, severity=severity, attribute="joint", variant=variant)
 
 
 def _judge(follower: str, leader: str, name: str, target: str) -> tuple[str, Severity] | None:

@@ -23,13 +23,22 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q, written_at
 
 
-@rule("S001", "duplicate-link", Severity.ERROR, fix="Rename or remove one of the two links.")
+@rule(
+    "S001",
+    "duplicate-link",
+    Severity.ERROR,
+    fix="Rename or remove one of the two links.",
+    effects=single(K.DUPLICATE_LINK),
+)
 def check(doc: Document) -> Iterator[Hit]:
     for link in doc.links:
         first = doc.link_map.get(link.name) if link.name is not None else None

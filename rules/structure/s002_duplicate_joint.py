@@ -21,13 +21,22 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q, written_at
 
 
-@rule("S002", "duplicate-joint", Severity.ERROR, fix="Rename or remove one of the two joints.")
+@rule(
+    "S002",
+    "duplicate-joint",
+    Severity.ERROR,
+    fix="Rename or remove one of the two joints.",
+    effects=single(K.DUPLICATE_JOINT),
+)
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
         first = doc.joint_map.get(joint.name) if joint.name is not None else None

@@ -23,13 +23,22 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.structure import did_you_mean, q
 
 
-@rule("S003", "undefined-link", Severity.ERROR, fix="Correct the link name or define the link.")
+@rule(
+    "S003",
+    "undefined-link",
+    Severity.ERROR,
+    fix="Correct the link name or define the link.",
+    effects=single(K.UNDEFINED_LINK),
+)
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
         for role in ("parent", "child"):

@@ -26,8 +26,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 
 
@@ -36,6 +39,7 @@ from urdflint.model.finding import Severity
     "multiple-roots",
     Severity.ERROR,
     fix="Attach the link to the tree with a joint, or remove it.",
+    effects=single(K.SECOND_ROOT),
 )
 def check(doc: Document) -> Iterator[Hit]:
     graph = doc.graph

@@ -34,6 +34,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
@@ -43,7 +45,13 @@ FIX = "Use one of: " + ", ".join(JOINT_TYPES) + "."
 MUJOCO_TYPES = frozenset({"spherical"})  # MuJoCo's URDF extension: a ball joint
 
 
-@rule("S006", "invalid-joint-type", Severity.ERROR, fix=FIX)
+@rule(
+    "S006",
+    "invalid-joint-type",
+    Severity.ERROR,
+    fix=FIX,
+    effects={"": K.UNKNOWN_JOINT_TYPE, "mujoco-type": {}},
+)
 def check(doc: Document) -> Iterator[Hit]:
     mujoco_only = doc.targets == frozenset({"mujoco"})
     for joint in doc.joints:
@@ -61,6 +69,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 fix="Keep it only if the model is loaded by MuJoCo alone.",
                 severity=Severity.INFO,
                 attribute="type",
+                variant="mujoco-type",
             )
             continue
         match = closest(kind.strip(), JOINT_TYPES)

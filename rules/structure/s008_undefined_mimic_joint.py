@@ -30,6 +30,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from urdflint.rules import consequences as K
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
@@ -41,6 +43,7 @@ from urdflint.model.structure import did_you_mean, q
     "undefined-mimic-joint",
     Severity.ERROR,
     fix="Point the mimic at an existing leader joint that does not follow this one.",
+    effects={"undefined": K.MIMIC_UNDEFINED},
 )
 def check(doc: Document) -> Iterator[Hit]:
     leaders: dict[str, str] = {}  # follower name -> leader name, for resolvable mimics
@@ -58,6 +61,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 mimic,
                 f"joint {q(joint.name)} mimics joint {target!r}, which is not defined",
                 fix=did_you_mean(target, doc.joint_map, "joint"),
+                variant="undefined",
             )
         elif joint.name is not None and doc.joint_map.get(joint.name) is joint:
             leaders[joint.name] = target

@@ -24,8 +24,18 @@
     504: "Checking took too long and was stopped.",
   };
 
+  const OUTCOMES = {
+    loads: "loads",
+    changes: "loads with changes",
+    refused: "refused",
+    crashes: "crashes",
+    "not-installed": "not installed",
+  };
+
   const $ = (id) => document.getElementById(id);
   const form = $("check-form");
+  // what the server offers (GET /v1/capabilities): confirm, the engines, target -> engine
+  const offer = { confirm: false, installed: [], engineOf: {} };
 
   function el(tag, attrs, ...children) {
     const node = document.createElement(tag);
@@ -75,7 +85,40 @@
       if (value) data.append(input.name, value);
     }
     data.append("svg", "true");
+    if ($("want-matrix").checked) data.append("matrix", "true");
+    const engines = confirmEngines();
+    if (engines.length && $("want-confirm").checked && !$("confirm-field").hidden) {
+      data.append("confirm", engines.join(","));
+    }
     return data;
+  }
+
+  function confirmEngines() {
+    // the installed engines of the chosen simulator (all of them for "All simulators")
+    const target = $("target").value;
+    if (target === "all") return offer.installed.slice();
+    const engine = offer.engineOf[target];
+    return engine && offer.installed.includes(engine) ? [engine] : [];
+  }
+
+  function showConfirm() {
+    const engines = confirmEngines();
+    $("want-confirm").disabled = engines.length === 0;
+    $("confirm-engines").textContent = engines.length
+      ? `(${engines.join(", ")}; slower: each engine loads the model)`
+      : "(no engine for this simulator is installed on the server)";
+  }
+
+  function learnOffer(found) {
+    const confirm = found && found.confirm;
+    if (!confirm || confirm.allowed !== true || typeof confirm.engines !== "object") return;
+    offer.installed = Object.keys(confirm.engines).filter((name) => confirm.engines[name] === true);
+    for (const target of Array.isArray(found.targets) ? found.targets : []) {
+      if (target && typeof target.name === "string") offer.engineOf[target.name] = target.engine;
+    }
+    offer.confirm = true;
+    $("confirm-field").hidden = false;
+    showConfirm();
   }
 
   async function submit(event) {
@@ -91,7 +134,9 @@
     const button = $("submit");
     button.disabled = true;
     form.setAttribute("aria-busy", "true");
-    $("status").textContent = "Checking…";
+    const confirming = body.has("confirm");
+    const asked = { matrix: body.has("matrix") };
+    $("status").textContent = confirming ? "Checking… (the engines load the model too)" : "Checking…";
     try {
       const response = await fetch("/v1/check", {
         method: "POST",
@@ -117,7 +162,7 @@
         showError("The server sent an answer this page does not understand.");
         return;
       }
-      render(payload);
+      render(payload, asked);
       $("status").textContent = "Done.";
       $("results").scrollIntoView({ behavior: "smooth", block: "start" });
     } catch (problem) {
@@ -125,7 +170,7 @@
     } finally {
       button.disabled = false;
       form.removeAttribute("aria-busy");
-      if ($("status").textContent === "Checking…") $("status").textContent = "";
+      if ($("status").textContent.startsWith("Checking…")) $("status").textContent = "";
     }
   }
 
@@ -145,7 +190,7 @@
 
   // -- results --------------------------------------------------------------------------
 
-  function render(doc) {
+  function render(doc, asked) {
     const summary = doc.summary || {};
     const passed = doc.passed === true;
     const banner = $("banner");
@@ -159,7 +204,8 @@
         `${n} ${n === 1 ? sev : PLURAL[sev]}`);
     }));
     renderModels(doc.models || {});
-    renderFindings(doc.findings);
+    const anchors = renderFindings(doc.findings);
+    renderMatrix(Array.isArray(doc.matrix) ? doc.matrix : [], !!(asked && asked.matrix), anchors);
     renderTrees(doc.svg || {});
     $("results").hidden = false;
     zoom("auto"); // after showing the results: fitting needs the box's width
@@ -206,6 +252,8 @@
     $("no-findings").hidden = findings.length > 0;
     table.hidden = findings.length === 0;
     const many = new Set(findings.map((f) => f.path)).size > 1;
+    const anchors = new Map(); // "path|line|code|element" and "line|code" -> the row's id
+    let count = 0;
     for (const sev of SEVERITIES) {
       const group = findings.filter((f) => f.severity === sev);
       if (!group.length) continue;
@@ -220,13 +268,90 @@
         const problem = el("td", { class: "problem" }, el("p", { class: "message" }, f.message));
         if (f.fix) problem.append(el("p", { class: "fix" }, f.fix));
         const line = many ? `${f.path}:${f.line}` : f.line;
+        const id = `finding-${++count}`;
+        for (const key of [anchorKey(f, true), anchorKey(f, false)]) {
+          if (!anchors.has(key)) anchors.set(key, id);
+        }
         body.append(el("tr", {
+          id: id, tabindex: "-1",
           class: "finding", "data-code": f.code, "data-line": f.line, "data-severity": f.severity,
           "data-element": f.element,
         }, el("td", { class: "num" }, line), code, el("td", { class: "element" }, ...breakable(f.element)), problem));
       }
       table.append(body);
     }
+    return anchors;
+  }
+
+  function anchorKey(f, exact) {
+    return exact ? [f.path, f.line, f.code, f.element].join("|") : [f.line, f.code].join("|");
+  }
+
+  // -- the simulators (the compatibility matrix) ------------------------------------------
+
+  function outcome(key) {
+    const known = Object.prototype.hasOwnProperty.call(OUTCOMES, key);
+    return el("span", { class: "outcome", "data-outcome": known ? key : "unknown" },
+      known ? OUTCOMES[key] : String(key));
+  }
+
+  function findingLinks(found, anchors, describe) {
+    // each deciding finding as "CODE line N": a link to its row in the findings table
+    const list = el("ul", { class: "deciding" });
+    for (const f of Array.isArray(found) ? found : []) {
+      const label = `${f.code} line ${f.line}`;
+      const id = anchors.get(anchorKey(f, true)) || anchors.get(anchorKey(f, false));
+      const link = id
+        ? el("a", { href: `#${id}`, class: "finding-link", "data-finding": id, "data-code": f.code }, label)
+        : el("span", { class: "finding-ref", "data-code": f.code }, label);
+      const note = describe(f);
+      list.append(el("li", { title: note.title || null }, link, note.text ? el("span", { class: "why" }, note.text) : null));
+    }
+    return list.childElementCount ? list : null;
+  }
+
+  function renderMatrix(rows, asked, anchors) {
+    const card = $("matrix-card");
+    const body = $("matrix").querySelector("tbody");
+    body.replaceChildren();
+    card.hidden = !asked && rows.length === 0;
+    $("no-matrix").hidden = rows.length > 0;
+    $("matrix").closest(".table-wrap").hidden = rows.length === 0;
+    const many = new Set(rows.map((r) => r.path)).size > 1;
+    for (const row of rows) {
+      const predicted = row.predicted || {};
+      const confirmed = row.confirmed && typeof row.confirmed === "object" ? row.confirmed : null;
+      const name = el("th", { scope: "row", class: "target" }, row.label || row.target);
+      if (many) name.append(el("span", { class: "basis" }, row.path));
+      if (row.basis && row.basis !== "engine") name.append(el("span", { class: "basis" }, `from its ${row.basis}`));
+      const engine = el("td", { class: "engine" });
+      if (confirmed) {
+        engine.append(el("span", { class: "engine-name" }, confirmed.engine), " ", outcome(confirmed.outcome));
+        const shown = findingLinks(confirmed.findings, anchors, (f) => ({ title: f.message }));
+        if (shown) engine.append(shown);
+      } else {
+        engine.append(el("span", { class: "muted" }, "—"));
+      }
+      const why = findingLinks(predicted.findings, anchors,
+        (f) => ({ text: f.consequence, title: f.detail || null }));
+      body.append(el("tr", {
+        class: "matrix-row", "data-target": row.target, "data-outcome": predicted.outcome,
+        "data-confirmed": confirmed ? confirmed.outcome : "",
+      }, name, el("td", { class: "predicted" }, outcome(predicted.outcome)), engine,
+      el("td", { class: "why" }, why || el("span", { class: "muted" }, "—"))));
+    }
+  }
+
+  function goToFinding(event) {
+    const link = event.target.closest("a.finding-link");
+    if (!link) return;
+    const row = document.getElementById(link.dataset.finding);
+    if (!row) return;
+    event.preventDefault();
+    document.querySelectorAll("#findings tr.highlight").forEach((tr) => tr.classList.remove("highlight"));
+    row.classList.add("highlight");
+    row.scrollIntoView({ behavior: "smooth", block: "center" });
+    row.focus({ preventScroll: true });
   }
 
   function breakable(path) {
@@ -319,11 +444,14 @@
   // -- start --------------------------------------------------------------------------------
 
   form.addEventListener("submit", submit);
+  $("target").addEventListener("change", () => { if (offer.confirm) showConfirm(); });
+  $("matrix").addEventListener("click", goToFinding);
   form.querySelectorAll("input[name=mode]").forEach((radio) => radio.addEventListener("change", showMode));
   document.querySelectorAll("[data-zoom]").forEach((button) =>
     button.addEventListener("click", () => zoom(button.dataset.zoom)));
   window.addEventListener("resize", () => { if (fitting) zoom("auto"); });
   showMode();
+  fetch("/v1/capabilities").then((r) => (r.ok ? r.json() : null)).then(learnOffer).catch(() => {});
   fetch("/version").then((r) => (r.ok ? r.json() : null)).then((v) => {
     const version = v && (v.urdflint || v.version);
     if (typeof version === "string") $("version").textContent = `v${version}`;

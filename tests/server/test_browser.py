@@ -9,6 +9,7 @@ process of ``live_server`` (tests/server/conftest.py) on a free loopback port.
 
 from __future__ import annotations
 
+import importlib.util
 import shutil
 import struct
 import time
@@ -401,3 +402,293 @@ def test_the_api_docs_render_offline(driver: Any, base_url: str) -> None:
         if "Content Security Policy" in entry["message"]
     ]
     assert refused == []
+
+
+# -- the simulators (the compatibility matrix) ---------------------------------------------------
+
+TWO_ROOTS = """<robot name="r">
+  <link name="base"/>
+  <link name="arm"/>
+  <link name="stray"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>
+</robot>
+"""
+
+
+def matrix_rows(driver: Any) -> list[dict[str, Any]]:
+    """The Simulators table as data: one dict per row, in page order."""
+    script = """
+      return Array.from(document.querySelectorAll('#matrix tr.matrix-row'), (tr) => ({
+        target: tr.dataset.target, outcome: tr.dataset.outcome, confirmed: tr.dataset.confirmed,
+        label: tr.querySelector('th.target').firstChild.textContent,
+        shown: tr.querySelector('td.predicted .outcome').textContent,
+        colour: getComputedStyle(tr.querySelector('td.predicted .outcome')).color,
+        engine: tr.querySelector('td.engine').textContent,
+        links: Array.from(tr.querySelectorAll('a.finding-link'), (a) => ({
+          text: a.textContent, row: a.dataset.finding, code: a.dataset.code}))}));
+    """
+    return list(driver.execute_script(script))
+
+
+def test_the_simulators_table_matches_the_api(driver: Any, base_url: str, tmp_path: Path) -> None:
+    httpx = pytest.importorskip("httpx")
+    from urdflint.model import targets
+
+    path = tmp_path / "two_roots.urdf"
+    path.write_text(TWO_ROOTS)
+    driver.get(f"{base_url}/")
+    WebDriverWait(driver, 20).until(
+        lambda d: d.execute_script("return document.readyState") == "complete"
+    )
+    assert driver.find_element(By.ID, "want-matrix").is_selected()  # on by default
+    assert not driver.find_element(By.ID, "confirm-field").is_displayed()  # not allowed here
+    assert check(driver, base_url, path) == "results"
+    assert driver.find_element(By.ID, "matrix-card").is_displayed()
+    api = httpx.post(
+        f"{base_url}/v1/check",
+        files={"urdf": ("two_roots.urdf", TWO_ROOTS.encode(), "application/xml")},
+        data={"matrix": "true", "target": "all"},
+        timeout=120,
+    ).json()
+    shown = matrix_rows(driver)
+    assert [r["target"] for r in shown] == [r["target"] for r in api["matrix"]]
+    assert [r["target"] for r in shown] == list(targets.TARGETS)
+    for row, expected in zip(shown, api["matrix"], strict=True):
+        assert row["outcome"] == expected["predicted"]["outcome"]
+        assert row["label"] == expected["label"] and row["confirmed"] == ""
+        assert len(row["links"]) == len(expected["predicted"]["findings"])
+        for link, found in zip(row["links"], expected["predicted"]["findings"], strict=True):
+            assert link["text"] == f"{found['code']} line {found['line']}"
+            target = driver.find_element(By.ID, link["row"])
+            assert target.get_attribute("data-code") == found["code"]
+            assert target.get_attribute("data-line") == str(found["line"])
+    linked = [link for row in shown for link in row["links"]]
+    if linked:  # the rules' effects decide whether any finding is linked
+        driver.find_element(By.CSS_SELECTOR, "#matrix a.finding-link").click()
+        WebDriverWait(driver, 5).until(
+            lambda d: d.find_elements(By.CSS_SELECTOR, "#findings tr.finding.highlight")
+        )
+        row = driver.find_element(By.CSS_SELECTOR, "#findings tr.highlight")
+        assert row.get_attribute("id") == linked[0]["row"]
+
+
+# a check answer with every outcome, a confirmation and deciding findings, served by a stub
+STUB = {
+    "version": 1,
+    "summary": {"files": 1, "error": 1, "warning": 1, "info": 0},
+    "passed": False,
+    "models": {"r.urdf": None},
+    "findings": [
+        {
+            "code": "S004",
+            "name": "multiple-roots",
+            "severity": "error",
+            "path": "r.urdf",
+            "line": 4,
+            "column": 3,
+            "element": "/robot/link[@name='stray']",
+            "message": "link 'stray' is a second root",
+            "fix": None,
+        },
+        {
+            "code": "E001",
+            "name": "engine-refused",
+            "severity": "warning",
+            "path": "r.urdf",
+            "line": 1,
+            "column": 1,
+            "element": "/robot",
+            "message": "Pinocchio refused the model: two root links",
+            "fix": None,
+        },
+    ],
+    "matrix": [
+        {
+            "path": "r.urdf",
+            "target": "mujoco",
+            "label": "MuJoCo",
+            "basis": "engine",
+            "predicted": {"outcome": "loads", "findings": []},
+            "confirmed": None,
+        },
+        {
+            "path": "r.urdf",
+            "target": "drake",
+            "label": "Drake",
+            "basis": "engine",
+            "predicted": {
+                "outcome": "changes",
+                "findings": [
+                    {
+                        "code": "S004",
+                        "path": "r.urdf",
+                        "line": 4,
+                        "element": "/robot/link[@name='stray']",
+                        "consequence": "link dropped",
+                        "detail": "drops it",
+                    }
+                ],
+            },
+            "confirmed": {"engine": "drake", "outcome": "not-installed", "findings": []},
+        },
+        {
+            "path": "r.urdf",
+            "target": "pinocchio",
+            "label": "Pinocchio",
+            "basis": "engine",
+            "predicted": {
+                "outcome": "refused",
+                "findings": [
+                    {
+                        "code": "S004",
+                        "path": "r.urdf",
+                        "line": 4,
+                        "element": "/robot/link[@name='stray']",
+                        "consequence": "refused",
+                        "detail": "Two root links found",
+                    }
+                ],
+            },
+            "confirmed": {
+                "engine": "pinocchio",
+                "outcome": "refused",
+                "findings": [
+                    {
+                        "code": "E001",
+                        "path": "r.urdf",
+                        "line": 1,
+                        "message": "Pinocchio refused the model: two root links",
+                    }
+                ],
+            },
+        },
+        {
+            "path": "r.urdf",
+            "target": "ros",
+            "label": "ROS (KDL, MoveIt)",
+            "basis": "source and documentation",
+            "predicted": {
+                "outcome": "crashes",
+                "findings": [
+                    {
+                        "code": "S004",
+                        "path": "r.urdf",
+                        "line": 4,
+                        "element": "/robot/link[@name='stray']",
+                        "consequence": "crash",
+                        "detail": "<img src=x onerror=window.pwned=1>",
+                    }
+                ],
+            },
+            "confirmed": None,
+        },
+    ],
+}
+STUB_FETCH = """
+  const answer = arguments[0];
+  const real = window.fetch;
+  window.sent = null;
+  window.fetch = (url, options) => {
+    if (!String(url).includes('/v1/check')) return real(url, options);
+    window.sent = Array.from(options.body.entries(),
+      ([k, v]) => [k, typeof v === 'string' ? v : 'file']);
+    return Promise.resolve(new Response(JSON.stringify(answer),
+      {status: 200, headers: {'Content-Type': 'application/json'}}));
+  };
+"""
+
+
+def test_simulators_outcomes_engines_and_links(driver: Any, base_url: str) -> None:
+    driver.get(f"{base_url}/")
+    WebDriverWait(driver, 20).until(
+        lambda d: d.execute_script("return document.readyState") == "complete"
+    )
+    driver.execute_script(STUB_FETCH, STUB)
+    driver.find_element(By.XPATH, "//input[@name='mode'][@value='paste']/parent::label").click()
+    driver.find_element(By.ID, "urdf-text").send_keys(TWO_ROOTS)
+    driver.find_element(By.ID, "submit").click()
+    WebDriverWait(driver, 30).until(lambda d: d.find_element(By.ID, "matrix-card").is_displayed())
+    sent = dict(driver.execute_script("return window.sent"))
+    assert sent["matrix"] == "true" and sent["target"] == "all" and "confirm" not in sent
+
+    shown = {row["target"]: row for row in matrix_rows(driver)}
+    assert [shown[t]["outcome"] for t in ("mujoco", "drake", "pinocchio", "ros")] == [
+        "loads", "changes", "refused", "crashes"]  # fmt: skip
+    assert shown["drake"]["shown"] == "loads with changes"
+    colours = {t: shown[t]["colour"] for t in shown}
+    assert len({colours["mujoco"], colours["drake"], colours["pinocchio"]}) == 3
+    assert colours["pinocchio"] == colours["ros"]  # refused and crashes: both red
+    assert shown["mujoco"]["engine"] == "—"
+    assert "pinocchio" in shown["pinocchio"]["engine"] and "refused" in shown["pinocchio"]["engine"]
+    assert "not installed" in shown["drake"]["engine"]
+    assert driver.execute_script("return window.pwned === undefined")  # details stay text
+
+    e001 = next(link for link in shown["pinocchio"]["links"] if link["code"] == "E001")
+    s004 = shown["ros"]["links"][0]
+    assert s004["text"] == "S004 line 4"
+    for link in (s004, e001):
+        driver.find_element(By.CSS_SELECTOR, f"#matrix a[data-finding='{link['row']}']").click()
+        WebDriverWait(driver, 5).until(
+            lambda d, row=link["row"]: (
+                "highlight" in d.find_element(By.ID, row).get_attribute("class")
+            )
+        )
+        assert len(driver.find_elements(By.CSS_SELECTOR, "#findings tr.highlight")) == 1
+        row = driver.find_element(By.ID, link["row"])
+        assert row.get_attribute("data-code") == link["code"]
+        assert driver.execute_script("return document.activeElement === arguments[0]", row)
+        WebDriverWait(driver, 5).until(
+            lambda d, row=row: d.execute_script(
+                "const r = arguments[0].getBoundingClientRect();"
+                "return r.top >= 0 && r.bottom <= window.innerHeight",
+                row,
+            )
+        )
+
+    # at phone width the page does not overflow: the table scrolls inside its own box
+    driver.set_window_size(390, 900)
+    try:
+        time.sleep(0.3)
+        widths = driver.execute_script(
+            "const box = document.querySelector('#matrix-card .table-wrap');"
+            "return [document.documentElement.scrollWidth, document.documentElement.clientWidth,"
+            " box.scrollWidth, box.clientWidth, getComputedStyle(box).overflowX]"
+        )
+        page, room, table, boxed, overflow = widths
+        assert page <= room and overflow == "auto" and table > boxed
+    finally:
+        driver.set_window_size(1400, 1000)
+
+
+@pytest.mark.skipif(importlib.util.find_spec("pinocchio") is None, reason="needs pinocchio")
+def test_confirm_in_the_installed_engines(driver: Any, tmp_path: Path) -> None:
+    """A server started with confirm allowed offers the box; the engine's verdict is shown."""
+    from tests.server.conftest import running_server
+
+    path = tmp_path / "two_roots.urdf"
+    path.write_text(TWO_ROOTS)
+    env = {"URDFLINT_ALLOW_CONFIRM": "1", "URDFLINT_JOBS": "1"}
+    with running_server(env, log=tmp_path / "serve.log") as base:
+        driver.get(f"{base}/")
+        WebDriverWait(driver, 20).until(
+            lambda d: d.find_element(By.ID, "confirm-field").is_displayed()
+        )
+        driver.execute_script(
+            "arguments[0].value = 'pinocchio'", driver.find_element(By.ID, "target")
+        )
+        driver.execute_script(
+            "document.getElementById('target').dispatchEvent(new Event('change'))"
+        )
+        assert "pinocchio" in driver.find_element(By.ID, "confirm-engines").text
+        driver.find_element(By.ID, "want-confirm").click()
+        driver.find_element(By.ID, "urdf-file").send_keys(str(path))
+        driver.find_element(By.ID, "submit").click()
+        WebDriverWait(driver, 120).until(
+            lambda d: d.find_element(By.ID, "matrix-card").is_displayed()
+        )
+        shown = matrix_rows(driver)
+        assert [row["target"] for row in shown] == ["pinocchio"]
+        assert shown[0]["confirmed"] in {"loads", "changes", "refused", "crashes"}
+        assert shown[0]["engine"].startswith("pinocchio")
+        codes = {r["code"] for r in rows(driver)}
+        assert "E001" in codes  # what Pinocchio said, in the findings

@@ -124,7 +124,8 @@ def _more_options(check: argparse.ArgumentParser) -> None:
         type=options.engine_list,
         default=[],
         metavar="ENGINES",
-        help="also load the model in these engines (mujoco, pybullet, drake, pinocchio or all; "
+        help="also load the model in these engines (mujoco, pybullet, drake, pinocchio, "
+        "sdformat or all; "
         "comma-separated) and report what they refuse, drop, warn about or crash on (E rules)",
     )
     check.add_argument(

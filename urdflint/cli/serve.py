@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 from typing import Any
 
 from urdflint.cli.common import EXIT_OK, UsageError
@@ -15,6 +16,14 @@ def add_parser(sub: Any) -> None:
         description="Run the HTTP service (urdflint.server.app:app) with uvicorn. Limits come "
         "from URDFLINT_* environment variables: MAX_URDF_BYTES, MAX_ZIP_BYTES, TIMEOUT, "
         "JOBS, QUEUE (see the README).",
+    )
+    serve.add_argument(
+        "--allow-confirm",
+        action="store_true",
+        help="accept the confirm option of /v1/check: load uploads in the installed "
+        "simulation engines (off by default: heavy native code on untrusted input; each "
+        "engine runs in its own process with a memory limit and a timeout); the same as "
+        "URDFLINT_ALLOW_CONFIRM=1",
     )
     serve.add_argument("--host", default="127.0.0.1", help="address to listen on")
     serve.add_argument("--port", type=int, default=8000, help="port to listen on")
@@ -37,6 +46,8 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError("--workers must be at least 1 and --port between 0 and 65535")
     from urdflint.server.limits import LimitError, Limits
 
+    if args.allow_confirm:  # the app reads its settings from the environment (Limits.from_env)
+        os.environ["URDFLINT_ALLOW_CONFIRM"] = "1"
     try:
         Limits.from_env()
     except LimitError as exc:

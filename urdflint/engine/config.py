@@ -36,7 +36,7 @@ KEYS = frozenset(
         "confirm",
     }
 )
-ENGINES = ("mujoco", "pybullet", "drake", "pinocchio")  # --confirm: the E rules
+ENGINES = ("mujoco", "pybullet", "drake", "pinocchio", "sdformat")  # --confirm: the E rules
 EXPECT_KEYS = frozenset({"mass", "mass-tolerance", "com", "com-tolerance", "q"})
 
 

@@ -46,7 +46,7 @@ def effects_section(rule: Rule) -> list[str]:
             lines.append(f"{variant}:")
         for target in targets.ordered(tuple(table)):
             effect = table[target]
-            basis = "observed" if targets.ENGINE[target] else "from its source and docs"
+            basis = targets.BASIS[target]
             detail = f": {effect.detail}" if effect.detail else ""
             lines.append(
                 f"- {targets.LABELS[target]} ({basis}): {effect.consequence.key}, "

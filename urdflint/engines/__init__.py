@@ -1,7 +1,8 @@
 """Confirmation against the real simulation engines (``urdflint check --confirm ...``).
 
 MuJoCo, PyBullet, Drake and Pinocchio each load the model in their own process
-(:mod:`urdflint.engines.probe`, run by :mod:`urdflint.engines.runner`); the E rules read
+(:mod:`urdflint.engines.probe`, run by :mod:`urdflint.engines.runner`), and so does sdformat,
+Gazebo's URDF converter (a compiled probe, :mod:`urdflint.engines.sdformat`); the E rules read
 what they refused, printed, dropped or crashed on through the document view
 ``confirmation``, registered here. Nothing heavy is imported until a rule asks for it,
 and nothing runs unless the settings name engines to confirm with.

@@ -3,7 +3,10 @@
 Each engine prints in its own way: PyBullet ``b3Warning[file,line]:`` followed by the
 message (and sometimes the link's name as a second message), Drake Python log records
 (``WARNING:drake:FILE:LINE: warning: ...``), urdfdom (Pinocchio) ``Warning:`` / ``Error:``
-lines followed by the C++ source location, MuJoCo ``WARNING:`` lines in ``MUJOCO_LOG.TXT``.
+lines followed by the C++ source location, MuJoCo ``WARNING:`` lines in ``MUJOCO_LOG.TXT``,
+sdformat ``Error [parser_urdf.cc:3023] ...`` / ``Warning [...] ...`` lines (coloured; the
+bracket is sdformat's own source location, dropped) and urdfdom's ``Error:`` lines (the
+probe prints the errors ``sdf::Root::Load`` returned as ``Error [Root::Load] ...``).
 A message is mapped to the element at the line it names, else to the first link or joint
 whose name it quotes (or mentions), else to the robot.
 """
@@ -24,6 +27,8 @@ LEVEL = re.compile(r"^\s*(?:\[[^\]]*\]\s*)*(?:\[(warning|error)\]|(WARNING|ERROR
 WHERE = re.compile(r"^(?P<file>\S+?):(?P<line>\d+):\s*(?:(?:warning|error):\s*)?")
 ELEMENT = re.compile(r"Element '(?P<tag>\w+)', line (?P<line>\d+)")
 SOURCE = re.compile(r"Failure at \S+ in ")
+COLOUR = re.compile(r"\x1b\[[0-9;]*m")
+SDFORMAT = re.compile(r"^\s*(Error|Warning|Msg|Dbg) \[[^\]\s]*\]\s*(.*)$")
 
 
 @dataclass(frozen=True)
@@ -35,8 +40,14 @@ class Message:
 
 
 def clean(text: str, temporary: str, shown: str) -> list[str]:
-    """The printed lines, the temporary file's name replaced by the document's."""
+    """The printed lines, the temporary file's name replaced by the document's, and other
+    paths in the temporary folder (a missing mesh) by paths beside the document."""
+    folder = temporary.rsplit("/", 1)[0] + "/" if "/" in temporary else None
+    beside = shown.rsplit("/", 1)[0] + "/" if "/" in shown else ""
     text = text.replace(temporary, shown)
+    if folder:
+        text = text.replace(folder, beside)
+    text = COLOUR.sub("", text)
     return [line.rstrip() for line in text.splitlines() if line.strip() and not NOISE.match(line)]
 
 
@@ -45,12 +56,7 @@ def classify(doc: Document, engine: str, lines: list[str]) -> tuple[list[Message
     if engine == "pybullet":
         found = _bullet(doc, "\n".join(lines))
     else:
-        found = []
-        for line in lines:
-            match = LEVEL.match(line)
-            if match:
-                level = (match.group(1) or match.group(2)).lower()
-                found.append((level, match.group(3).strip()))
+        found = [kind for line in lines if (kind := _level(engine, line)) is not None]
     warnings: dict[str, Message] = {}
     errors: dict[str, Message] = {}
     for level, text in found:
@@ -60,6 +66,18 @@ def classify(doc: Document, engine: str, lines: list[str]) -> tuple[list[Message
         target = errors if level == "error" else warnings
         target.setdefault(message.text, message)
     return list(warnings.values()), list(errors.values())
+
+
+def _level(engine: str, line: str) -> tuple[str, str] | None:
+    """``(level, message)`` of a warning or error line (sdformat's or the common forms)."""
+    match = SDFORMAT.match(line) if engine == "sdformat" else None
+    if match:
+        kind = match.group(1).lower()
+        return (kind, match.group(2).strip()) if kind in ("error", "warning") else None
+    match = LEVEL.match(line)
+    if match:
+        return (match.group(1) or match.group(2)).lower(), match.group(3).strip()
+    return None
 
 
 def _bullet(doc: Document, text: str) -> list[tuple[str, str]]:

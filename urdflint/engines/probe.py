@@ -86,10 +86,12 @@ def drake(path: str) -> Built:
     import math
 
     from pydrake.multibody.parsing import Parser
-    from pydrake.multibody.plant import MultibodyPlant
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
     from pydrake.multibody.tree import BodyIndex, JointIndex
+    from pydrake.systems.framework import DiagramBuilder
 
-    plant = MultibodyPlant(0.0)
+    # with a SceneGraph, as simulations use it: geometry (meshes, shapes) is registered too
+    plant, _ = AddMultibodyPlantSceneGraph(DiagramBuilder(), 0.0)
     Parser(plant).AddModels(file_name=Path(path))
     found = [plant.get_body(BodyIndex(i)) for i in range(1, plant.num_bodies())]
     bodies = [body.name() for body in found]
@@ -121,6 +123,8 @@ def pinocchio(path: str) -> Built:
     import pinocchio as pin
 
     model = pin.buildModelFromUrdf(path)
+    for kind in (pin.GeometryType.COLLISION, pin.GeometryType.VISUAL):  # as RobotWrapper does
+        pin.buildGeomFromUrdf(model, path, kind, package_dirs=[str(Path(path).parent)])
     frames = [f for f in model.frames if f.type == pin.FrameType.BODY]
     joints = [str(name) for name in list(model.names)[1:]]
     limits, inertias = {}, {}

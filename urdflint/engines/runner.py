@@ -5,7 +5,10 @@ expanded document), with every mesh that resolves rewritten to its absolute path
 each engine finds the meshes the run found (package paths, workspace packages, relative
 files). Elements keep their line numbers, so an engine's ``line N`` is a line of the
 document. Each probe runs with a timeout and a memory limit, from the temporary folder
-(MuJoCo writes its ``MUJOCO_LOG.TXT`` in the working folder).
+(MuJoCo writes its ``MUJOCO_LOG.TXT`` in the working folder). The Python engines run
+``python -m urdflint.engines.probe``; sdformat runs a compiled probe
+(:mod:`urdflint.engines.sdformat`, built on first use), with ``HOME`` pointing at the
+temporary folder (where sdformat writes its log file).
 """
 
 from __future__ import annotations
@@ -25,12 +28,13 @@ from typing import Any
 from lxml import etree
 
 from urdflint.engine.config import ENGINES
-from urdflint.engines import output
+from urdflint.engines import output, sdformat
 from urdflint.engines.output import Message
 from urdflint.model.document import Document
 
 __all__ = ["ENGINES", "Outcome", "confirm", "installed", "write_model"]
 MODULES = {"mujoco": "mujoco", "pybullet": "pybullet", "drake": "pydrake", "pinocchio": "pinocchio"}
+NATIVE = ("sdformat",)  # a compiled probe (:mod:`urdflint.engines.sdformat`), not Python
 TIMEOUT = 60.0  # seconds per engine
 MEMORY = 3 << 30  # bytes of address space per engine (POSIX)
 
@@ -39,7 +43,8 @@ MEMORY = 3 << 30  # bytes of address space per engine (POSIX)
 class Outcome:
     """What one engine did with the model.
 
-    ``installed`` is false when the engine's module is not importable (nothing ran);
+    ``installed`` is false when the engine's module is not importable, or its probe could
+    not be built (nothing ran; ``reason`` says why when there is more to say);
     ``crash`` says how the process died (a signal, the timeout, no report); ``refusal``
     is the engine's reason when it raised or refused to load; ``bodies`` and ``joints``
     are the names in the model it built; ``limits`` maps each revolute or prismatic joint to
@@ -49,6 +54,7 @@ class Outcome:
 
     engine: str
     installed: bool = True
+    reason: str | None = None
     built: bool = False
     crash: str | None = None
     refusal: Message | None = None
@@ -60,7 +66,20 @@ class Outcome:
 
 
 def installed(engine: str) -> bool:
+    """Whether ``engine`` can run here (cheap: nothing is imported or compiled)."""
+    if engine in NATIVE:
+        return sdformat.installed()
     return importlib.util.find_spec(MODULES[engine]) is not None
+
+
+def probe(engine: str, path: Path) -> tuple[list[str], dict[str, str] | None]:
+    """The command line and environment (``None``: this one) that load ``path`` in ``engine``.
+
+    Raises :class:`~urdflint.engines.sdformat.Unavailable` when sdformat's probe cannot be
+    compiled."""
+    if engine in NATIVE:
+        return sdformat.command(path, MEMORY), sdformat.environment(path.parent)
+    return [sys.executable, "-m", "urdflint.engines.probe", engine, str(path), str(MEMORY)], None
 
 
 def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -> list[Outcome]:
@@ -105,11 +124,18 @@ def _mujoco_keeps_paths(robot: etree._Element) -> None:
 def run(doc: Document, engine: str, path: Path, timeout: float) -> Outcome:
     if not installed(engine):
         return Outcome(engine, installed=False)
-    command = [sys.executable, "-m", "urdflint.engines.probe", engine, str(path), str(MEMORY)]
     try:
-        proc = subprocess.run(command, capture_output=True, timeout=timeout, cwd=path.parent)
+        command, env = probe(engine, path)
+    except sdformat.Unavailable as exc:
+        return Outcome(engine, installed=False, reason=str(exc))
+    try:
+        proc = subprocess.run(
+            command, capture_output=True, timeout=timeout, cwd=path.parent, env=env
+        )
     except subprocess.TimeoutExpired:
         return Outcome(engine, crash=f"did not finish loading the model within {timeout:g} s")
+    except OSError as exc:  # the probe could not be started (missing, not allowed)
+        return Outcome(engine, crash=f"could not be started ({exc.strerror or exc})")
     printed = proc.stderr.decode("utf-8", "replace")
     log = path.parent / "MUJOCO_LOG.TXT"
     if engine == "mujoco" and log.is_file():

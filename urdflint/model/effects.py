@@ -50,6 +50,12 @@ class Consequence(enum.Enum):
         Outcome.CHANGES,
         Severity.ERROR,
     )
+    LIMITS_CHANGED = (
+        "limits changed",
+        "changes the joint's limits",
+        Outcome.CHANGES,
+        Severity.ERROR,
+    )
     INERTIA_SUBSTITUTED = (
         "inertia substituted",
         "substitutes another mass or inertia",
@@ -92,6 +98,7 @@ MEASURABLE = frozenset(
         Consequence.REFUSED,
         Consequence.LINK_DROPPED,
         Consequence.JOINT_UNLIMITED,
+        Consequence.LIMITS_CHANGED,
         Consequence.INERTIA_SUBSTITUTED,
     }
 )
@@ -141,12 +148,16 @@ def unlimited(detail: str = "") -> Effect:
     return Effect(Consequence.JOINT_UNLIMITED, detail)
 
 
+def limits_changed(detail: str = "") -> Effect:
+    return Effect(Consequence.LIMITS_CHANGED, detail)
+
+
 def substituted(detail: str = "") -> Effect:
     return Effect(Consequence.INERTIA_SUBSTITUTED, detail)
 
 
-def no_geometry(detail: str = "") -> Effect:
-    return Effect(Consequence.GEOMETRY_DROPPED, detail)
+def no_geometry(detail: str = "", severity: Severity | None = None) -> Effect:
+    return Effect(Consequence.GEOMETRY_DROPPED, detail, severity)
 
 
 def ignored(detail: str = "", severity: Severity | None = None) -> Effect:
@@ -170,5 +181,5 @@ def for_targets(
     effects: Effects, variant: str, targets: frozenset[str] | tuple[str, ...]
 ) -> tuple[tuple[str, Effect], ...]:
     """The effects of ``variant`` on the selected ``targets``, in the targets' order."""
-    table = effects.get(variant) or effects.get("") or {}
+    table = effects[variant] if variant in effects else effects.get("", {})
     return tuple((t, table[t]) for t in targets if t in table)

@@ -52,6 +52,18 @@ ENGINE: dict[str, str | None] = {
     "ros": None,
 }
 
+# Where each target's effects come from (a rule's page says it beside each one).
+BASIS: dict[str, str] = {
+    "gazebo-classic": "observed with sdformat 12.3; Classic's sdformat 9 converts alike",
+    "gz-sim": "observed with sdformat 12.3",
+    "mujoco": "observed with MuJoCo 4.0",
+    "drake": "observed with Drake 1.51",
+    "pybullet": "observed with PyBullet 3.2.7",
+    "isaac": "from the importer's source, Isaac Sim 5.1",
+    "pinocchio": "observed with Pinocchio 4.1",
+    "ros": "from the source of urdfdom, kdl_parser and MoveIt",
+}
+
 
 def validate(names: list[str] | tuple[str, ...]) -> tuple[str, ...]:
     """Check target names (``all`` expands to every target); raises ``ValueError`` naming

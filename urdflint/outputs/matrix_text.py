@@ -12,37 +12,47 @@ from urdflint.model.finding import Finding
 
 LABELS = {o.key: o.label for o in Outcome} | {"not-installed": "not installed"}
 MAX_LINES = 3  # lines named per rule in a row
+MAX_RULES = 3  # rules named in a row
 
 
 def effects_line(finding: Finding) -> str | None:
-    """``MuJoCo refuses the model · PyBullet loads it as written, silently`` when the
-    message does not already name every target concerned."""
-    if not finding.effects:
+    """``refused: Gazebo Classic, MuJoCo · as written: PyBullet, Pinocchio`` when the run
+    aims at several targets and the message does not already name every one concerned."""
+    if len(finding.effects) < 2:
         return None
-    if all(T.LABELS[t].split(" (")[0] in finding.message for t, _ in finding.effects):
+    if all(T.LABELS[t].split()[0] in finding.message for t, _ in finding.effects):
         return None
-    return " · ".join(f"{T.LABELS[t]} {e.consequence.phrase}" for t, e in finding.effects)
+    grouped: dict[str, list[str]] = {}
+    for target, effect in finding.effects:
+        grouped.setdefault(effect.consequence.key, []).append(T.LABELS[target])
+    return " · ".join(f"{key}: {', '.join(labels)}" for key, labels in grouped.items())
 
 
 def table(rows: Sequence[dict[str, Any]]) -> list[str]:
     """One block per file: a line per target with the prediction, the engine's outcome when
     it was confirmed, and the findings that decide it."""
     lines: list[str] = []
+    width = max(len(r["label"]) for r in rows) + 1
+    confirmed = any(r["confirmed"] for r in rows)
     for path, block in groupby(rows, key=lambda r: r["path"]):
         lines.append(f"{path}: what each target does with the model (--matrix)")
         for row in block:
+            label = row["label"] + ("" if row["basis"] == "engine" else "*")
             predicted = LABELS[row["predicted"]["outcome"]]
-            confirmed = row["confirmed"]
-            seen = f"engine: {LABELS[confirmed['outcome']]}" if confirmed else ""
-            why = _deciding(row["predicted"]["findings"])
-            basis = "" if row["basis"] == "engine" else " (from its source and docs)"
-            text = f"  {row['label'] + basis:<42} {predicted:<19} {seen:<24} {why}"
-            lines.append(text.rstrip())
+            text = f"  {label:<{width}} {predicted:<19}"
+            if confirmed:
+                seen = row["confirmed"]
+                text += f" {'engine: ' + LABELS[seen['outcome']] if seen else '':<26}"
+            brief = row["predicted"]["outcome"] in ("refused", "crashes")
+            lines.append(f"{text} {_deciding(row['predicted']['findings'], brief)}".rstrip())
+    if any(r["basis"] != "engine" for r in rows):
+        lines.append("  * not run here: predicted from its source code and documentation")
     return lines
 
 
-def _deciding(found: list[dict[str, Any]]) -> str:
-    """``I002 refused (line 20), G002 tag ignored (lines 12, 19, 25)``."""
+def _deciding(found: list[dict[str, Any]], brief: bool = False) -> str:
+    """``I002 inertia substituted (line 20), G002 tag ignored (lines 12, 19, 25)``; without
+    the consequences when ``brief`` (they are all the row's refusal or crash)."""
     parts = []
     ordered = sorted(found, key=lambda d: (d["code"], d["consequence"], d["line"]))
     for (code, consequence), group in groupby(ordered, key=lambda d: (d["code"], d["consequence"])):
@@ -51,5 +61,9 @@ def _deciding(found: list[dict[str, Any]]) -> str:
         if len(lines) > MAX_LINES:
             shown += f" +{len(lines) - MAX_LINES}"
         noun = "line" if len(lines) == 1 else "lines"
-        parts.append(f"{code} {consequence} ({noun} {shown})")
+        parts.append(
+            f"{code} ({noun} {shown})" if brief else f"{code} {consequence} ({noun} {shown})"
+        )
+    if len(parts) > MAX_RULES:
+        parts[MAX_RULES:] = [f"{len(parts) - MAX_RULES} more (JSON: matrix)"]
     return ", ".join(parts)
