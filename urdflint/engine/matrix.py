@@ -13,8 +13,8 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 from urdflint.model import targets as T
-from urdflint.model.effects import MEASURABLE, Consequence, Outcome
-from urdflint.model.finding import Finding
+from urdflint.model.effects import MEASURABLE, Consequence, Effect, Outcome
+from urdflint.model.finding import Finding, Severity
 
 # E rule -> what it shows the engine did
 CONFIRMS: dict[str, Outcome] = {
@@ -55,7 +55,7 @@ def predict(findings: list[Finding], target: str) -> tuple[Outcome, list[dict[st
     decide it (those with an effect of that outcome; for a model that loads, those that
     load only with a warning or silently wrong)."""
     effects = [(f, e) for f in findings for t, e in f.effects if t == target]
-    worst = max((e.consequence.outcome for _, e in effects), default=Outcome.LOADS)
+    worst = max((outcome(e) for _, e in effects), default=Outcome.LOADS)
     deciding = [
         {
             "code": f.code,
@@ -66,9 +66,17 @@ def predict(findings: list[Finding], target: str) -> tuple[Outcome, list[dict[st
             "detail": e.detail,
         }
         for f, e in effects
-        if e.consequence.outcome is worst
+        if outcome(e) is worst
     ]
     return worst, deciding
+
+
+def outcome(effect: Effect) -> Outcome:
+    """The effect's outcome; one of info severity (a tag ignored that changes nothing that
+    matters, like KDL dropping the root's inertia) leaves the model loading."""
+    if effect.level is Severity.INFO:
+        return min(effect.consequence.outcome, Outcome.LOADS)
+    return effect.consequence.outcome
 
 
 def confirm(findings: list[Finding], engine: str) -> dict[str, Any]:

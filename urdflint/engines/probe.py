@@ -1,13 +1,19 @@
-"""Load one URDF in one simulation engine and print what it built, as one JSON line.
+"""Load URDF files in one simulation engine and print what it built, one JSON line per file.
 
-``python -m urdflint.engines.probe ENGINE URDF`` is run by :mod:`urdflint.engines.runner`
-in its own process (engines abort or crash on bad input). The engine's own output, C level
-included, is moved to stderr, where the parent reads it; stdout carries only the JSON line
-``{"engine", "ok", "error", "bodies", "joints", "limits", "inertias"}``. ``bodies`` are the
-link names the engine kept (MuJoCo bodies, PyBullet links, Drake bodies, Pinocchio ``BODY``
-frames). ``limits`` maps each revolute or prismatic joint to ``[type, lower, upper]`` as
-built (``null`` when unlimited), in URDF units; ``inertias`` maps each body to ``[mass,
-principal moments about its centre of mass]`` as built.
+``python -m urdflint.engines.probe ENGINE MEMORY URDF [URDF...]`` is run by
+:mod:`urdflint.engines.runner` in its own process (engines abort or crash on bad input),
+with an address-space limit of ``MEMORY`` bytes (0: none). It loads the files in turn: a
+new engine state for each (a PyBullet connection, a Drake plant), and writes one JSON line
+per file to stdout, flushed, ``{"path", "engine", "ok", "error", "bodies", "joints",
+"limits", "inertias"}``. The engine's own output, C level included, is moved to stderr,
+where the parent reads it: before each file the probe writes a marker line, ``MARK INDEX``
+(:data:`MARK`), so what the engine printed is attributable to its file, and after each file
+it echoes (and deletes) the ``MUJOCO_LOG.TXT`` MuJoCo writes in the working folder.
+
+``bodies`` are the link names the engine kept (MuJoCo bodies, PyBullet links, Drake bodies,
+Pinocchio ``BODY`` frames). ``limits`` maps each revolute or prismatic joint to ``[type,
+lower, upper]`` as built (``null`` when unlimited), in URDF units; ``inertias`` maps each
+body to ``[mass, principal moments about its centre of mass]`` as built.
 """
 
 from __future__ import annotations
@@ -165,21 +171,57 @@ def limit_memory(limit: int) -> None:
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
 
-def main(argv: list[str]) -> int:
-    engine, path, *rest = argv
-    limit_memory(int(rest[0]) if rest else 0)
-    out = os.fdopen(os.dup(1), "w")
-    os.dup2(2, 1)  # everything the engine prints, C level included, goes to stderr
-    report: dict[str, Any] = {"engine": engine, "ok": False, "error": None, "bodies": [],
-                              "joints": [], "limits": {}, "inertias": {}}  # fmt: skip
+MARK = "@@urdflint-probe-file"  # stderr: what follows, up to the next mark, is about file N
+MUJOCO_LOG = "MUJOCO_LOG.TXT"
+
+
+def load(engine: str, path: str) -> dict[str, Any]:
+    """The report on one file: what ``engine`` built, or why it refused it."""
+    report: dict[str, Any] = {"path": path, "engine": engine, "ok": False, "error": None,
+                              "bodies": [], "joints": [], "limits": {}, "inertias": {}}  # fmt: skip
     try:
         report.update(LOADERS[engine](path))
         report["ok"] = True
     except Exception as exc:  # the engine refused the model: its message is the finding
         report["error"] = f"{type(exc).__name__}: {exc}"
+    return report
+
+
+def flush() -> None:
+    """Flush what was printed so far, Python's buffers and C's (``stdout`` is stderr here)."""
     sys.stdout.flush()
-    out.write(json.dumps(report) + "\n")
-    out.flush()
+    sys.stderr.flush()
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError, TypeError):  # no C library to ask (Windows)
+        pass
+
+
+def echo_log() -> None:
+    """Move MuJoCo's log of the file just loaded (in the working folder) to stderr."""
+    log = Path(MUJOCO_LOG)
+    if log.is_file():
+        sys.stderr.write("\n" + log.read_text(encoding="utf-8", errors="replace") + "\n")
+        log.unlink()
+
+
+def main(argv: list[str]) -> int:
+    engine, memory, *paths = argv
+    limit_memory(int(memory))
+    out = os.fdopen(os.dup(1), "w")
+    os.dup2(2, 1)  # everything the engine prints, C level included, goes to stderr
+    for index, path in enumerate(paths):
+        flush()
+        sys.stderr.write(f"\n{MARK} {index}\n")
+        flush()
+        report = load(engine, path)
+        if engine == "mujoco":
+            echo_log()
+        flush()
+        out.write(json.dumps(report) + "\n")
+        out.flush()
     return 0
 
 

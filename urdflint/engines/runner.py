@@ -9,34 +9,40 @@ document. Each probe runs with a timeout and a memory limit, from the temporary 
 ``python -m urdflint.engines.probe``; sdformat runs a compiled probe
 (:mod:`urdflint.engines.sdformat`, built on first use), with ``HOME`` pointing at the
 temporary folder (where sdformat writes its log file).
+
+:func:`confirm` loads one document in several engines (one process each, in parallel);
+:func:`confirm_batch` loads many documents in one engine, in one process
+(:mod:`urdflint.engines.batch`: a process that crashes is restarted after the file it
+crashed on; sdformat's probe runs once per file), and :func:`remember` hands such outcomes
+to the E rules for a document, so that linting it with ``confirm`` runs no engine.
 """
 
 from __future__ import annotations
 
 import copy
 import importlib.util
-import json
 import signal
-import subprocess
 import sys
 import tempfile
+from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
 
 from lxml import etree
 
 from urdflint.engine.config import ENGINES
-from urdflint.engines import output, sdformat
+from urdflint.engines import batch, output, sdformat
 from urdflint.engines.output import Message
 from urdflint.model.document import Document
 
-__all__ = ["ENGINES", "Outcome", "confirm", "installed", "write_model"]
+__all__ = ["ENGINES", "Outcome", "confirm", "confirm_batch", "confirm_many", "installed",
+           "remember", "write_model"]  # fmt: skip
 MODULES = {"mujoco": "mujoco", "pybullet": "pybullet", "drake": "pydrake", "pinocchio": "pinocchio"}
 NATIVE = ("sdformat",)  # a compiled probe (:mod:`urdflint.engines.sdformat`), not Python
 TIMEOUT = 60.0  # seconds per engine
 MEMORY = 3 << 30  # bytes of address space per engine (POSIX)
+NATIVE_WORKERS = 4  # sdformat's probes (one file each) run at a time in confirm_batch
 
 
 @dataclass
@@ -72,14 +78,12 @@ def installed(engine: str) -> bool:
     return importlib.util.find_spec(MODULES[engine]) is not None
 
 
-def probe(engine: str, path: Path) -> tuple[list[str], dict[str, str] | None]:
-    """The command line and environment (``None``: this one) that load ``path`` in ``engine``.
-
-    Raises :class:`~urdflint.engines.sdformat.Unavailable` when sdformat's probe cannot be
-    compiled."""
+def command(engine: str) -> batch.Command:
+    """The command line that loads the given files in ``engine`` (sdformat: the first)."""
     if engine in NATIVE:
-        return sdformat.command(path, MEMORY), sdformat.environment(path.parent)
-    return [sys.executable, "-m", "urdflint.engines.probe", engine, str(path), str(MEMORY)], None
+        return lambda paths: sdformat.command(paths[0], MEMORY)
+    probe = [sys.executable, "-m", "urdflint.engines.probe", engine, str(MEMORY)]
+    return lambda paths: [*probe, *map(str, paths)]
 
 
 def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -> list[Outcome]:
@@ -89,6 +93,45 @@ def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -
         path = write_model(doc, Path(folder))
         with ThreadPoolExecutor(max_workers=max(len(wanted), 1)) as pool:
             return list(pool.map(lambda e: run(doc, e, path, timeout), wanted))
+
+
+def confirm_batch(docs: Sequence[Document], engine: str, timeout: float = TIMEOUT) -> list[Outcome]:
+    """Load each of ``docs`` in ``engine``: one process for them all (a new one after a
+    crash; sdformat: one per document), each model in its own folder; ``timeout`` is per
+    document. The outcomes are those :func:`run` gives, in order."""
+    unusable = _unusable(engine)
+    if unusable is not None:
+        return [replace(unusable) for _ in docs]
+    with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
+        paths = []
+        for index, doc in enumerate(docs):
+            (Path(folder) / str(index)).mkdir()
+            paths.append(write_model(doc, Path(folder) / str(index)))
+        found = _load(engine, paths, timeout, Path(folder))
+        pairs = zip(docs, found, strict=True)
+        return [outcome(doc, engine, loaded, timeout) for doc, loaded in pairs]
+
+
+def confirm_many(
+    docs: Sequence[Document], engines: Sequence[str], timeout: float = TIMEOUT
+) -> list[list[Outcome]]:
+    """Each document's outcomes in ``engines`` (in that order): one :func:`confirm_batch`
+    per engine, the engines in parallel; each document's are :func:`remember`-ed."""
+    wanted = [e for e in dict.fromkeys(engines) if e in ENGINES]
+    with ThreadPoolExecutor(max_workers=max(len(wanted), 1)) as pool:
+        per_engine = list(pool.map(lambda e: confirm_batch(docs, e, timeout), wanted))
+    found = [[outcomes[i] for outcomes in per_engine] for i in range(len(docs))]
+    for doc, outcomes in zip(docs, found, strict=True):
+        remember(doc, outcomes)
+    return found
+
+
+def remember(doc: Document, outcomes: Sequence[Outcome]) -> None:
+    """Make ``outcomes`` the ``confirmation`` of ``doc``: the E rules report them when the
+    document is linted with ``confirm`` settings, and no engine is started for it."""
+    from urdflint.engines import _DONE
+
+    _DONE[doc] = list(outcomes)
 
 
 def write_model(doc: Document, folder: Path) -> Path:
@@ -122,49 +165,61 @@ def _mujoco_keeps_paths(robot: etree._Element) -> None:
 
 
 def run(doc: Document, engine: str, path: Path, timeout: float) -> Outcome:
+    """Load the model written at ``path`` in ``engine`` (its own process, from its folder)."""
+    unusable = _unusable(engine)
+    if unusable is not None:
+        return unusable
+    (loaded,) = _load(engine, [path], timeout, path.parent)
+    return outcome(doc, engine, loaded, timeout)
+
+
+def _unusable(engine: str) -> Outcome | None:
+    """The outcome of an engine that cannot run here (``None``: it can)."""
     if not installed(engine):
         return Outcome(engine, installed=False)
-    try:
-        command, env = probe(engine, path)
-    except sdformat.Unavailable as exc:
-        return Outcome(engine, installed=False, reason=str(exc))
-    try:
-        proc = subprocess.run(
-            command, capture_output=True, timeout=timeout, cwd=path.parent, env=env
-        )
-    except subprocess.TimeoutExpired:
-        return Outcome(engine, crash=f"did not finish loading the model within {timeout:g} s")
-    except OSError as exc:  # the probe could not be started (missing, not allowed)
-        return Outcome(engine, crash=f"could not be started ({exc.strerror or exc})")
-    printed = proc.stderr.decode("utf-8", "replace")
-    log = path.parent / "MUJOCO_LOG.TXT"
-    if engine == "mujoco" and log.is_file():
-        printed += "\n" + log.read_text(encoding="utf-8", errors="replace")
-        log.unlink()
-    lines = output.clean(printed, str(path), doc.path)
-    warnings, errors = output.classify(doc, engine, lines)
-    report = _report(proc.stdout.decode("utf-8", "replace"))
-    if proc.returncode != 0 or report is None:
-        return Outcome(engine, crash=_death(proc.returncode, errors), warnings=warnings)
-    outcome = Outcome(engine, built=bool(report["ok"]), warnings=warnings,
-                      bodies=tuple(report["bodies"]), joints=tuple(report["joints"]))  # fmt: skip
-    outcome.limits = {k: (v[0], v[1], v[2]) for k, v in report.get("limits", {}).items()}
-    outcome.inertias = {k: (v[0], tuple(v[1])) for k, v in report.get("inertias", {}).items()}
-    if not outcome.built:
-        raised = output.clean(str(report["error"]), str(path), doc.path)
-        outcome.refusal = output.refusal(doc, errors, raised)
-    return outcome
-
-
-def _report(stdout: str) -> dict[str, Any] | None:
-    for line in reversed(stdout.splitlines()):
+    if engine in NATIVE:
         try:
-            found = json.loads(line)
-        except ValueError:
-            continue
-        if isinstance(found, dict) and "ok" in found:
-            return found
+            sdformat.binary()  # compiled on first use
+        except sdformat.Unavailable as exc:
+            return Outcome(engine, installed=False, reason=str(exc))
     return None
+
+
+def _load(engine: str, paths: list[Path], timeout: float, folder: Path) -> list[batch.Loaded]:
+    """Run the probe over ``paths`` (sdformat: once per path, ``HOME`` its folder, a few
+    at a time)."""
+    if engine not in NATIVE:
+        return batch.load(command(engine), paths, timeout, folder)
+
+    def one(path: Path) -> batch.Loaded:
+        env = sdformat.environment(path.parent)
+        return batch.load(command(engine), [path], timeout, path.parent, env)[0]
+
+    if len(paths) == 1:
+        return [one(paths[0])]
+    with ThreadPoolExecutor(max_workers=NATIVE_WORKERS) as pool:
+        return list(pool.map(one, paths))
+
+
+def outcome(doc: Document, engine: str, loaded: batch.Loaded, timeout: float) -> Outcome:
+    """What the probe's answer on one file says ``engine`` did with ``doc``."""
+    if loaded.failed is not None:
+        return Outcome(engine, crash=f"could not be started ({loaded.failed})")
+    if loaded.hung:
+        return Outcome(engine, crash=f"did not finish loading the model within {timeout:g} s")
+    lines = output.clean(loaded.printed, str(loaded.path), doc.path)
+    warnings, errors = output.classify(doc, engine, lines)
+    report = loaded.report
+    if loaded.status is not None or report is None:
+        return Outcome(engine, crash=_death(loaded.status or 0, errors), warnings=warnings)
+    found = Outcome(engine, built=bool(report["ok"]), warnings=warnings,
+                    bodies=tuple(report["bodies"]), joints=tuple(report["joints"]))  # fmt: skip
+    found.limits = {k: (v[0], v[1], v[2]) for k, v in report.get("limits", {}).items()}
+    found.inertias = {k: (v[0], tuple(v[1])) for k, v in report.get("inertias", {}).items()}
+    if not found.built:
+        raised = output.clean(str(report["error"]), str(loaded.path), doc.path)
+        found.refusal = output.refusal(doc, errors, raised)
+    return found
 
 
 def _death(code: int, errors: list[Message]) -> str:

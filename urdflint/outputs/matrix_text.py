@@ -42,7 +42,7 @@ def table(rows: Sequence[dict[str, Any]]) -> list[str]:
             text = f"  {label:<{width}} {predicted:<19}"
             if confirmed:
                 seen = row["confirmed"]
-                text += f" {'engine: ' + LABELS[seen['outcome']] if seen else '':<26}"
+                text += f" {'engine: ' + LABELS[seen['outcome']] if seen else '':<27}"
             brief = row["predicted"]["outcome"] in ("refused", "crashes")
             lines.append(f"{text} {_deciding(row['predicted']['findings'], brief)}".rstrip())
     if any(r["basis"] != "engine" for r in rows):
