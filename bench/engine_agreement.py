@@ -4,7 +4,8 @@ whether urdflint's per-simulator prediction agrees.
 
     .venv/bin/python bench/engine_agreement.py [--out FILE] [--md FILE] [--jobs N]
                                                [--robots a,b] [--defects a,b]
-                                               [--bases URDF...] [--rescore JSON]
+                                               [--bases URDF...] [--merge JSON]
+                                               [--rescore JSON]
 
 The base robots are the four of ``fixtures/planted/``, or with ``--bases`` real URDF files
 (a robot is named after its file, or its folder for ``model.urdf``; a ``package_map.json``
@@ -536,6 +537,12 @@ def parse(argv: list[str] | None) -> argparse.Namespace:
         help="real URDF files as the base robots (default: the fixtures)",
     )
     parser.add_argument(
+        "--merge",
+        type=Path,
+        metavar="JSON",
+        help="keep the cases saved in JSON that this run does not redo",
+    )
+    parser.add_argument(
         "--rescore",
         type=Path,
         metavar="JSON",
@@ -555,6 +562,18 @@ def bases(args: argparse.Namespace) -> dict[str, Base]:
     return found
 
 
+def merge(
+    path: Path, results: list[dict[str, Any]], saved: dict[str, Any], seconds: float
+) -> tuple[list[dict[str, Any]], dict[str, Any], float]:
+    """The cases saved in ``path`` with this run's in place of those it redid (same robot
+    and defect), then its new ones; the bases of both; the seconds of both."""
+    data = json.loads(path.read_text())
+    fresh = {(r["robot"], r["defect"]): r for r in results}
+    kept = [fresh.pop((r["robot"], r["defect"]), r) for r in data["cases"]]
+    bases_ = {**(data.get("bases") or {}), **saved}
+    return [*kept, *fresh.values()], bases_, float(data.get("seconds") or 0) + seconds
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parse(argv)
     if args.rescore:
@@ -566,12 +585,14 @@ def main(argv: list[str] | None = None) -> int:
     chosen_bases = bases(args)
     chosen = cases(chosen_bases.values(), args.defects.split(","))
     results = run(chosen, args.jobs)
-    mark_new_warnings(results)
     seconds = time.monotonic() - start
+    saved = {n: b.to_json() for n, b in chosen_bases.items()}
+    if args.merge:
+        results, saved, seconds = merge(args.merge, results, saved, seconds)
+    mark_new_warnings(results)
     names = list(engines())
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    data = {"engines": names, "seconds": round(seconds, 1),
-            "bases": {n: b.to_json() for n, b in chosen_bases.items()}, "cases": results}  # fmt: skip
+    data = {"engines": names, "seconds": round(seconds, 1), "bases": saved, "cases": results}
     args.out.write_text(json.dumps(data, indent=1) + "\n")
     args.md.write_text(markdown(results, names, seconds))
     print(f"{len(results)} cases in {seconds:.0f} s -> {args.out}, {args.md}")

@@ -39,6 +39,7 @@ Planter: TypeAlias = Callable[[Tree], Element | None]
 T = TypeVar("T")
 
 MOMENTS = ("ixx", "iyy", "izz")
+PRODUCTS = ("ixy", "ixz", "iyz")
 LIMITED = ("revolute", "prismatic")
 
 
@@ -289,13 +290,18 @@ def negative_mass(tree: Tree) -> Element | None:
 
 def zero_mass_moving_link(tree: Tree) -> Element | None:
     """Mass and inertia of the body (the first moving link with mass) both zero: a massless
-    moving body."""
+    moving body (products of inertia the robot writes zeroed too)."""
     moments, element = inertia(tree), mass(tree)
     if moments is None or element is None:
         return None
-    for name in MOMENTS:
+    for name in _components(moments):
         _set(moments, name, 0.0)
     return _set(element, "value", 0.0)
+
+
+def _components(element: Element) -> list[str]:
+    """The moments, and the products of inertia ``element`` writes."""
+    return [*MOMENTS, *(name for name in PRODUCTS if element.get(name) is not None)]
 
 
 def missing_inertial_moving_link(tree: Tree) -> Element | None:
@@ -329,13 +335,13 @@ def triangle_violated(tree: Tree) -> Element | None:
 
 
 def tiny_mass(tree: Tree) -> Element | None:
-    """1e-9 kg, the inertia scaled down with it."""
+    """1e-9 kg, the inertia (moments and products) scaled down with it."""
     element, moments = mass(tree), inertia(tree)
     if element is None or moments is None:
         return None
     scale = 1e-9 / _number(element, "value")
-    for name in MOMENTS:
-        _set(moments, name, _number(moments, name) * scale)
+    for name in _components(moments):
+        _set(moments, name, (_float(moments, name) or 0.0) * scale)
     return _set(element, "value", 1e-9)
 
 

@@ -8,13 +8,16 @@ loaders of the selected targets:
 - Gazebo Sim (`gz-common`): STL, Collada and OBJ, plus glTF (`.gltf`, `.glb`)
   and FBX through assimp since Garden (gz-common 5; Fortress has the first three);
 - MuJoCo: STL, OBJ and its own MSH; no Collada.
+- Drake (1.51, observed): collision meshes in OBJ, VTK or glTF only; it refuses an STL or
+  Collada collision mesh ("MakeConvexHull only applies to .obj, .vtk, and .gltf meshes;
+  unsupported extension '.stl'"), which is what most ROS robots have.
 
 MuJoCo's URDF import skips `<visual>` elements unless the file sets
 `<mujoco><compiler discardvisual="false"/></mujoco>` (URDF's default is
 `true`), so under `mujoco` only collision meshes count until then.
 An unknown or missing extension is reported for every target. It is an error
-when MuJoCo is among the targets that cannot load the file, since MuJoCo then
-refuses the whole model; a warning for Gazebo, which drops the geometry.
+when MuJoCo or Drake is among the targets that cannot load the file, since they then
+refuse the whole model; a warning for Gazebo, which drops the geometry.
 
 ## Why is this bad?
 MuJoCo's URDF import stops at the first unsupported mesh ("no decoder found
@@ -42,14 +45,30 @@ from urdflint.model.effects import Effect
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q
 from urdflint.model.targets import LABELS
-from urdflint.sources.mesh_formats import KNOWN_FORMATS, TARGET_FORMATS, format_name, suffix
+from urdflint.sources.mesh_formats import (
+    COLLISION_ONLY,
+    KNOWN_FORMATS,
+    TARGET_FORMATS,
+    format_name,
+    suffix,
+)
 from urdflint.sources.meshes import references
 
 READS = {
     "gazebo-classic": "STL, Collada and OBJ",
     "gz-sim": "STL, Collada, OBJ, glTF and FBX",
     "mujoco": "STL, OBJ and MSH",
+    "drake": "OBJ, VTK and glTF for collision geometry",
 }
+
+GEOMETRY_LOST = fx.no_geometry("the mesh is not shown or collided with")
+EFFECTS: dict[str, Effect] = {
+    "gazebo-classic": GEOMETRY_LOST,
+    "gz-sim": GEOMETRY_LOST,
+    "mujoco": fx.refused('"no decoder found for mesh file"'),
+    "drake": fx.refused('"MakeConvexHull only applies to .obj, .vtk, and .gltf meshes"'),
+}
+REFUSING = frozenset({"mujoco", "drake"})
 
 
 @rule(
@@ -57,13 +76,7 @@ READS = {
     "unsupported-mesh-format",
     Severity.WARNING,
     fix="Convert the mesh to STL or OBJ, which every target reads.",
-    effects={
-        "": {
-            "mujoco": fx.refused("unknown mesh file type"),
-            "gazebo-classic": fx.no_geometry("the mesh is not shown or collided with"),
-            "gz-sim": fx.no_geometry("the mesh is not shown or collided with"),
-        }
-    },
+    effects={"": EFFECTS},
 )
 def check(doc: Document) -> Iterator[Hit]:
     targets = [t for t in TARGET_FORMATS if t in doc.targets]
@@ -73,13 +86,11 @@ def check(doc: Document) -> Iterator[Hit]:
     for ref in references(doc):
         ext = suffix(ref.uri)
         failing = [
-            t
-            for t in targets
-            if ext not in TARGET_FORMATS[t] and (t != "mujoco" or ref.tag == "collision" or visuals)
+            t for t in targets if ext not in TARGET_FORMATS[t] and _counts(t, ref.tag, visuals)
         ]
         if not failing:
             continue
-        severity = Severity.ERROR if "mujoco" in failing else Severity.WARNING
+        severity = Severity.ERROR if REFUSING & set(failing) else Severity.WARNING
         what = f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}"
         if not ext or ext not in KNOWN_FORMATS:
             kind = "has no extension" if not ext else f"has the unknown extension '.{ext}'"
@@ -102,13 +113,16 @@ def check(doc: Document) -> Iterator[Hit]:
 
 
 def effects(failing: list[str]) -> dict[str, Effect]:
-    """MuJoCo refuses the model; Gazebo loads it without the mesh."""
-    return {
-        t: fx.refused("unknown mesh file type")
-        if t == "mujoco"
-        else fx.no_geometry("the mesh is not shown or collided with")
-        for t in failing
-    }
+    """MuJoCo and Drake refuse the model; Gazebo loads it without the mesh."""
+    return {t: EFFECTS[t] for t in failing}
+
+
+def _counts(target: str, tag: str, visuals: bool) -> bool:
+    """Whether the target reads this mesh at all: MuJoCo skips visuals unless told not to,
+    Drake's limit is on collision meshes."""
+    if target == "mujoco":
+        return tag == "collision" or visuals
+    return tag == "collision" or target not in COLLISION_ONLY
 
 
 def _mujoco_keeps_visuals(doc: Document) -> bool:

@@ -28,6 +28,7 @@ from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from weakref import WeakKeyDictionary
 
 from lxml import etree
 
@@ -71,6 +72,9 @@ class Outcome:
     inertias: dict[str, tuple[float, tuple[float, ...]]] = field(default_factory=dict)
 
 
+_REMEMBERED: WeakKeyDictionary[Document, list[Outcome]] = WeakKeyDictionary()  # remember()
+
+
 def installed(engine: str) -> bool:
     """Whether ``engine`` can run here (cheap: nothing is imported or compiled)."""
     if engine in NATIVE:
@@ -87,12 +91,18 @@ def command(engine: str) -> batch.Command:
 
 
 def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -> list[Outcome]:
-    """Load ``doc`` in each of ``engines`` (in parallel, one process each)."""
+    """Load ``doc`` in each of ``engines`` (in parallel, one process each), but for the
+    outcomes :func:`remember`-ed for it."""
     wanted = [e for e in dict.fromkeys(engines) if e in ENGINES]
-    with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
-        path = write_model(doc, Path(folder))
-        with ThreadPoolExecutor(max_workers=max(len(wanted), 1)) as pool:
-            return list(pool.map(lambda e: run(doc, e, path, timeout), wanted))
+    known = {o.engine: o for o in _REMEMBERED.get(doc, ())}
+    missing = [e for e in wanted if e not in known]
+    if missing:
+        with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
+            path = write_model(doc, Path(folder))
+            with ThreadPoolExecutor(max_workers=len(missing)) as pool:
+                found = pool.map(lambda e: run(doc, e, path, timeout), missing)
+                known.update(zip(missing, found, strict=True))
+    return [known[e] for e in wanted]
 
 
 def confirm_batch(docs: Sequence[Document], engine: str, timeout: float = TIMEOUT) -> list[Outcome]:
@@ -127,11 +137,10 @@ def confirm_many(
 
 
 def remember(doc: Document, outcomes: Sequence[Outcome]) -> None:
-    """Make ``outcomes`` the ``confirmation`` of ``doc``: the E rules report them when the
-    document is linted with ``confirm`` settings, and no engine is started for it."""
-    from urdflint.engines import _DONE
-
-    _DONE[doc] = list(outcomes)
+    """Make ``outcomes`` what :func:`confirm` gives for ``doc`` in their engines, without
+    starting them: linting the document with ``confirm`` settings (before it is linted
+    with them otherwise) has the E rules report these."""
+    _REMEMBERED[doc] = list(outcomes)
 
 
 def write_model(doc: Document, folder: Path) -> Path:

@@ -43,7 +43,9 @@ TARGET_FORMATS: Mapping[str, frozenset[str]] = {
     "gazebo-classic": frozenset({"stl", "stla", "stlb", "dae", "obj"}),
     "gz-sim": frozenset({"stl", "stla", "stlb", "dae", "obj", "gltf", "glb", "fbx"}),
     "mujoco": frozenset({"stl", "obj", "msh"}),
+    "drake": frozenset({"obj", "vtk", "gltf"}),  # collision (proximity) geometry only
 }
+COLLISION_ONLY = frozenset({"drake"})  # targets whose format limit applies to collisions
 KNOWN_FORMATS = frozenset().union(*TARGET_FORMATS.values(), TRIMESH_TYPES)
 
 
