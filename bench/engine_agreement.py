@@ -456,7 +456,8 @@ def agreement(results: list[dict[str, Any]]) -> str:
             lines.append(f"    {result['robot']:20} predicted {guess:8} observed {seen:8} "
                          f"(findings: {why})")  # fmt: skip
             engine = targets.ENGINE.get(target) or ""
-            shown = new_messages(result, engine, control) or ["(no E finding the control lacks)"]
+            none = "(no E finding)" if result is control else "(no E finding the control lacks)"
+            shown = new_messages(result, engine, control) or [none]
             lines += [f"      {message[:300]}" for message in shown[:3]]
     return "\n".join(lines)
 

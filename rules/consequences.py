@@ -156,7 +156,9 @@ WORLD_INERTIA: dict[str, Effect] = {
 }
 
 MASSLESS_MODEL: dict[str, Effect] = gazebo(
-    dropped("sdformat drops the massless root and with it the whole model")
+    refused(
+        'sdformat drops the massless root and every link: "A model must have at least one link"'
+    )
 )
 
 # -- joints -----------------------------------------------------------------------------

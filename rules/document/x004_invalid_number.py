@@ -36,6 +36,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
+from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
@@ -63,4 +64,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"<{el.tag}> {attr} {value!r} of {owner(el)} {why}",
                 attribute=attr,
                 variant="mass" if el.tag == "mass" else "",
+                effects=L.invalid_mass(doc, el) if el.tag == "mass" else None,
             )

@@ -56,6 +56,7 @@ from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.effects import Effect, refused
 from urdflint.model.finding import Severity
 
 SINCE = {(1, 0): "", (1, 1): "5.1", (1, 2): "6.0"}  # the urdfdom release that reads it
@@ -140,6 +141,7 @@ def check(doc: Document) -> Iterator[Hit]:
             fix=f'Keep version="{label}" only if every consumer uses urdfdom {since} or later.',
             severity=Severity.INFO,
             variant="newer",
+            effects=_newer(doc, version),
         )
     else:
         yield Hit(
@@ -148,4 +150,23 @@ def check(doc: Document) -> Iterator[Hit]:
             f"{since} and urdf_parser_py refuse the model",
             severity=Severity.WARNING,
             variant="newer",
+            effects=_newer(doc, version),
         )
+
+
+def _newer(doc: Document, version: tuple[int, int]) -> dict[str, Effect]:
+    """From URDF 1.2 on, urdfdom (4.0 and later, as bundled with Pinocchio 4.1) requires
+    both ``lower`` and ``upper`` on every revolute and prismatic ``<limit>`` (observed)."""
+    table = dict(K.NEWER_URDF_VERSION)
+    bounded = [j for j in doc.joints if j.type in ("revolute", "prismatic")]
+    if version >= (1, 2) and any(
+        (lim := j.find("limit")) is not None
+        and (lim.get("lower") is None or lim.get("upper") is None)
+        for j in bounded
+    ):
+        why = refused(
+            '"revolute and prismatic joints must have both lower and upper position limits '
+            'specified in URDF version 1.2 or later"'
+        )
+        table.update({"pinocchio": why, "ros": why})
+    return table

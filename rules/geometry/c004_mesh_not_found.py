@@ -51,11 +51,13 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from lxml import etree
 from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
+from urdflint.model.bodies import mujoco_compiler
 from urdflint.model.document import Document
-from urdflint.model.effects import single
+from urdflint.model.effects import Effect, single
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q
 from urdflint.sources.meshes import FileRef, references, unresolved
@@ -72,4 +74,22 @@ def check(doc: Document) -> Iterator[Hit]:
     ]
     for problem in unresolved(doc, refs, "mesh"):
         fix = FIX_PACKAGE if problem.package_fix else None
-        yield Hit(problem.element, problem.message, fix=fix, severity=problem.severity)
+        yield Hit(
+            problem.element,
+            problem.message,
+            fix=fix,
+            severity=problem.severity,
+            effects=_effects(doc, problem.element),
+        )
+
+
+def _effects(doc: Document, mesh: etree._Element | None) -> dict[str, Effect]:
+    """MuJoCo's URDF import discards visuals (``discardvisual`` defaults to true): a
+    missing visual mesh costs it nothing (observed on six corpus robots)."""
+    table = dict(K.MISSING_MESH)
+    owner = mesh.getparent() if mesh is not None else None
+    owner = owner.getparent() if owner is not None else None
+    visual = owner is not None and owner.tag == "visual"
+    if visual and mujoco_compiler(doc, "discardvisual", "true").lower() not in ("false", "0"):
+        del table["mujoco"]
+    return table

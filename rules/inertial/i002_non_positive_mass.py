@@ -43,6 +43,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
+from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import massless
@@ -73,6 +74,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 attribute="value",
                 severity=severity,
                 variant="negative",
+                effects=L.impossible(doc, name, K.NEGATIVE_MASS),
             )
             continue
         verdict = massless.verdict(doc, name)

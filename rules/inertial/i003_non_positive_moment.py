@@ -42,6 +42,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
+from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies, impossible_severity, welded_note
@@ -77,4 +78,5 @@ def check(doc: Document) -> Iterator[Hit]:
         parts = [f"{k} = {fmt(v)}" for k, v in bad]
         listed = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
         message = f"link '{name}' has {listed} kg·m²" + welded_note(doc, name, severity)
-        yield Hit(inertial.inertia_element, message, severity=severity)
+        effects = L.impossible(doc, name, K.BAD_TENSOR)
+        yield Hit(inertial.inertia_element, message, severity=severity, effects=effects)

@@ -39,6 +39,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
+from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import Bodies, bodies, impossible_severity, welded_note
@@ -71,6 +72,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"link '{name}' has an inertia tensor that is not positive definite "
                 f"(principal moments {listed} kg·m²)" + welded_note(doc, name, severity),
                 severity=severity,
+                effects=L.impossible(doc, name, K.BAD_TENSOR),
             )
         elif moments[0] <= tol and not _harmless(b, name, inertial.mass):
             yield Hit(

@@ -37,6 +37,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
+from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies, impossible_severity, welded_note
@@ -68,4 +69,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"link '{name}' has principal moments {fmt(a)}, {fmt(b)} and {fmt(c)} kg·m², "
                 f"and {fmt(a)} + {fmt(b)} < {fmt(c)}" + welded_note(doc, name, severity),
                 severity=severity,
+                effects=L.impossible(doc, name, K.BAD_TENSOR),
             )

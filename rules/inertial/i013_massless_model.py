@@ -54,7 +54,7 @@ from collections.abc import Iterator
 from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies
+from urdflint.model.bodies import GAZEBO_MASSLESS, bodies
 from urdflint.model.document import Document
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
@@ -71,7 +71,10 @@ from urdflint.model.targets import GAZEBO, gazebo_label
 )
 def check(doc: Document) -> Iterator[Hit]:
     root = doc.graph.root
-    if root is None or root == "world":
+    if root == "world":
+        yield from _world(doc)
+        return
+    if root is None:
         return
     if not any(link.inertial is not None or link.visuals or link.collisions for link in doc.links):
         return  # only frames (a TF tree): there is nothing to simulate, nothing is lost
@@ -96,4 +99,24 @@ def check(doc: Document) -> Iterator[Hit]:
         f"{lost}: sdformat finds no link to load",
         attribute="value" if inertial is not None and inertial.mass_element is not None else None,
         severity=Severity.ERROR if inertial is not None or not below else Severity.WARNING,
+    )
+
+
+def _world(doc: Document) -> Iterator[Hit]:
+    """A root named ``world`` is the world frame to sdformat, which does not lump into it:
+    each link welded to it is a body of its own, dropped with its subtree when massless.
+    When every one is, no link is left (observed: "A model must have at least one link")."""
+    b = bodies(doc)
+    below = [j.child for j in doc.graph.child_joints.get("world", []) if j.child in doc.link_map]
+    masses = [b.mass(name) for name in below]
+    if not below or any(m is None or m < 0 or m > GAZEBO_MASSLESS for m in masses):
+        return  # some mass (or one unreadable, or a negative one: I002's)
+    if not any(link.inertial is not None for link in doc.links):
+        return  # a kinematics-only model: I001 says it once
+    label = gazebo_label(doc.targets)
+    yield Hit(
+        doc.link_map["world"].element,
+        f"no link welded to 'world' has mass, so {label} drops them all ('world' is the world "
+        "frame to it; a mass on it is ignored) and finds no link to load",
+        fix="Give the links below 'world' their real masses.",
     )

@@ -47,7 +47,7 @@ from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model import targets
 from urdflint.model.document import Document, Joint
-from urdflint.model.effects import Effect
+from urdflint.model.effects import Effect, refused
 from urdflint.model.finding import Severity
 
 FIXES = {
@@ -86,9 +86,12 @@ def check(doc: Document) -> Iterator[Hit]:
 def effects(doc: Document, joint: Joint) -> dict[str, Effect]:
     """What each target does with the planar or floating ``joint``: MuJoCo accepts a free
     joint only on a body of the top level (a child of the static root or world)."""
+    table = dict(K.PLANAR if joint.type == "planar" else K.FLOATING)
+    drake = _drake(doc, joint)
+    if drake is not None:
+        table["drake"] = drake
     if joint.type == "planar":
-        return dict(K.PLANAR)
-    table = dict(K.FLOATING)
+        return table
     link, seen = joint.parent, set()
     while link is not None and link not in seen:  # up through fixed joints: MuJoCo fuses them
         seen.add(link)
@@ -109,3 +112,22 @@ def _sentences(found: dict[str, Effect]) -> list[str]:
         text = effect.detail or effect.consequence.phrase
         by_detail.setdefault(text, []).append(targets.LABELS[target])
     return [f"{' and '.join(labels)}: {text}" for text, labels in by_detail.items()]
+
+
+def _drake(doc: Document, joint: Joint) -> Effect | None:
+    """Drake (observed, 1.51) refuses an actuated planar or floating joint (a <transmission>
+    names it: "AddJointActuator ... this joint has 3 degrees of freedom", or "Transmission
+    specifies joint ... which does not exist" for a floating one, which it does not build),
+    and a planar joint's <dynamics damping> given as one number ("Expected 3 values")."""
+    named = {
+        (j.get("name") or "").strip()
+        for t in doc.robot.iter("transmission")
+        for j in t.iter("joint")
+    }
+    if joint.name in named:
+        return refused("a <transmission> drives it: Drake cannot add its actuator")
+    dynamics = joint.find("dynamics")
+    damping = (dynamics.get("damping") or "").split() if dynamics is not None else []
+    if joint.type == "planar" and len(damping) == 1:
+        return refused('"Expected 3 values for attribute damping": one per planar DOF')
+    return None

@@ -33,10 +33,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
+from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, Joint
-from urdflint.model.effects import Effect, refused
 from urdflint.model.finding import Severity
 from urdflint.model.structure import q
 
@@ -56,7 +56,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"and joint {q(joint.name)}",
                 fix="Keep one parent joint per link; close real loops in the simulator.",
                 variant="two-parents",
-                effects=_two_parents(parents[0], joint),
+                effects=L.two_parents(doc, parents[0], joint),
             )
     order = {id(joint.element): index for index, joint in enumerate(doc.joints)}
     for cycle in graph.cycles():
@@ -83,12 +83,3 @@ def _parents(doc: Document) -> dict[str, list[Joint]]:
         if joint.child is not None and joint.child in found:
             found[joint.child].append(joint)
     return found
-
-
-def _two_parents(first: Joint, second: Joint) -> dict[str, Effect]:
-    """sdformat (observed, 12.3) lumps a child welded by a fixed joint into both parents
-    (its mass counted twice); two moving parents make it write the link twice, refused."""
-    table = dict(K.TWO_PARENTS)
-    if "fixed" not in (first.type, second.type):
-        table.update(K.gazebo(refused('sdformat: "link with name[...] already exists"')))
-    return table

@@ -326,13 +326,13 @@ def mujoco_verdict(doc: Document, name: str, declared: bool = True) -> Verdict |
             f"({MUJOCO_DENSITY:.0f} kg/m³) and fuses it into '{joint.parent}'"
         )
         return Verdict(Severity.INFO, fused, "fuse")
-    if guessed:
+    if guessed and not _fused_mass(doc, name, "false"):  # a welded child's mass is used
         made_up = (
             "MuJoCo makes up its mass and inertia from its collision geometry "
             f"({MUJOCO_DENSITY:.0f} kg/m³)"
         )
         return Verdict(Severity.WARNING, made_up, "infer")
-    if _fused_mass(doc, name, infer):
+    if guessed or _fused_mass(doc, name, infer):
         return None
     refused = (
         'MuJoCo refuses the model ("mass and inertia of moving bodies must be larger '

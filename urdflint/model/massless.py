@@ -49,14 +49,17 @@ def moving(doc: Document, name: str) -> bool:
 
 
 def others(doc: Document, name: str, declared: bool) -> dict[str, Effect]:
-    """The effects on the targets other than Gazebo and MuJoCo."""
-    if not moving(doc, name):
-        return {}
+    """The effects on the targets other than Gazebo and MuJoCo. PyBullet keeps every link
+    apart (no lumping): a moving link without ``<inertial>`` gets its 1 kg even when links
+    welded to it have mass."""
     found: dict[str, Effect] = {}
+    joint = doc.graph.parent_joint(name)
+    if not declared and joint is not None and joint.type in MOVABLE:
+        found["pybullet"] = fx.substituted(PYBULLET_GUESS)
+    if not moving(doc, name):
+        return found
     if declared:
         found["pybullet"] = fx.kept(f"PyBullet loads it {SINGULAR}")
-    else:
-        found["pybullet"] = fx.substituted(PYBULLET_GUESS)
     found["drake"] = fx.kept(f"Drake loads it {SINGULAR}")
     found["pinocchio"] = fx.kept(f"Pinocchio loads it {SINGULAR}")
     link = doc.link_map[name]
