@@ -62,7 +62,7 @@ from urdflint.model import targets  # noqa: E402
 from urdflint.model.effects import MEASURABLE, Consequence  # noqa: E402
 from urdflint.model.finding import Finding  # noqa: E402
 
-NOTES = Path("/work/notes")
+NOTES = ROOT / "bench" / "results"  # git-ignored
 CONTROL = "none"
 CATEGORIES = ("crashes", "refused", "changes", "loads")
 ORDER = ("loads", "changes", "refused", "crashes")  # best to worst (Outcome)

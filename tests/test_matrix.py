@@ -68,9 +68,7 @@ def test_a_finding_carries_the_effects_of_the_selected_targets_only() -> None:
 def test_variants_choose_the_table() -> None:
     settings = config.Settings(targets=("drake",))
     found = lint_file(ENGINES / "inverted_limits.urdf", select=("J009",), settings=settings)
-    assert [(f.line, f.effects[0][1].consequence) for f in found] == [
-        (13, fx.Consequence.CRASH)
-    ]
+    assert [(f.line, f.effects[0][1].consequence) for f in found] == [(13, fx.Consequence.CRASH)]
 
 
 def test_matrix_predicts_the_worst_effect_per_target() -> None:
