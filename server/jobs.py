@@ -198,6 +198,11 @@ class Scrub:
             cleaned = None if value is None else self.text(value)
             if cleaned != value:
                 fields[name] = cleaned
+        autofix = finding.autofix
+        if autofix is not None and autofix.edits:
+            edits = tuple(replace(e, path=self.text(e.path)) for e in autofix.edits)
+            if edits != autofix.edits:
+                return replace(finding, **fields, autofix=replace(autofix, edits=edits))
         return replace(finding, **fields) if fields else finding
 
     def value(self, value: Any) -> Any:

@@ -84,6 +84,7 @@ def test_json_envelope(capsys, no_limit: Path) -> None:
         "trace",
         "effects",
         "engine",
+        "autofix",
     }
     assert finding["element"] == "/robot/joint[@name='shoulder']"
     assert finding["severity"] == "error" and finding["line"] == 4

@@ -28,6 +28,7 @@ from lxml import etree
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, local_tag
+from urdflint.model.edits import RemoveAttribute, Repair
 from urdflint.model.finding import Severity
 
 PLAYERSTAGE = "playerstage.sourceforge.net/gazebo/xmlschema"
@@ -38,6 +39,7 @@ PLAYERSTAGE = "playerstage.sourceforge.net/gazebo/xmlschema"
     "obsolete-gazebo-namespace",
     Severity.WARNING,
     fix="Delete the Player/Stage xmlns declaration; no current parser reads it.",
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     if b"playerstage" not in doc.source:
@@ -50,11 +52,18 @@ def check(doc: Document) -> Iterator[Hit]:
             for prefix, uri in sorted(el.nsmap.items(), key=lambda kv: kv[0] or "")
             if PLAYERSTAGE in uri and inherited.get(prefix) != uri
         ]
+        repair = Repair(
+            "safe",
+            "delete the Player/Stage namespace declarations",
+            tuple(RemoveAttribute(el, name) for name in names),
+        )
         if len(names) == 1:
-            yield Hit(el, f"<{local_tag(el)}> declares the obsolete Gazebo namespace {names[0]}")
+            message = f"<{local_tag(el)}> declares the obsolete Gazebo namespace {names[0]}"
+            yield Hit(el, message, repair=repair)
         elif names:
             yield Hit(
                 el,
                 f"<{local_tag(el)}> declares {len(names)} obsolete Gazebo namespaces: "
                 + ", ".join(names),
+                repair=repair,
             )

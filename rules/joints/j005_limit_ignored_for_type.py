@@ -39,6 +39,7 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
+from urdflint.model.edits import RemoveAttribute, RemoveElement, Repair
 from urdflint.model.finding import Severity
 from urdflint.model.values import fmt
 
@@ -48,6 +49,7 @@ from urdflint.model.values import fmt
     "limit-ignored-for-type",
     Severity.WARNING,
     fix="Make the joint revolute if it must stay within bounds, else delete the ignored values.",
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
@@ -72,6 +74,11 @@ def check(doc: Document) -> Iterator[Hit]:
                 "a continuous joint has no position bounds",
                 fix="Make the joint revolute to enforce the bounds, or delete lower and upper.",
                 severity=Severity.INFO if wide else None,
+                repair=Repair(
+                    "safe",
+                    "delete the ignored lower and upper",
+                    tuple(RemoveAttribute(lim.element, a) for a in written),
+                ),
             )
         elif joint.type in J.LIMIT_IGNORED:
             yield Hit(
@@ -79,4 +86,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"{J.label(joint)} has a <limit>, which is ignored for {joint.type} joints",
                 fix="Delete the <limit>, or change the joint type if it is meant to move.",
                 severity=Severity.INFO if joint.type == "fixed" else None,
+                repair=Repair("safe", "delete the ignored <limit>", (RemoveElement(lim.element),)),
             )

@@ -24,6 +24,7 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document, children
+from urdflint.model.edits import RemoveElement, Repair
 from urdflint.model.finding import Severity
 
 
@@ -32,6 +33,7 @@ from urdflint.model.finding import Severity
     "axis-ignored-for-type",
     Severity.INFO,
     fix="Delete the <axis>, or change the joint type if the joint is meant to move.",
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
@@ -39,5 +41,7 @@ def check(doc: Document) -> Iterator[Hit]:
             continue
         for el in children(joint.element, "axis"):
             yield Hit(
-                el, f"{J.label(joint)} has an <axis>, which is ignored for {joint.type} joints"
+                el,
+                f"{J.label(joint)} has an <axis>, which is ignored for {joint.type} joints",
+                repair=Repair("safe", "delete the ignored <axis>", (RemoveElement(el),)),
             )

@@ -32,6 +32,7 @@ from urdflint.rules import consequences as K
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair, SetAttribute
 from urdflint.model.finding import Severity
 from urdflint.model.values import fmt
 
@@ -41,6 +42,7 @@ from urdflint.model.values import fmt
     "non-unit-axis",
     Severity.WARNING,
     options={"tolerance": 1e-3},
+    fixable="safe",
     effects={"": K.NON_UNIT_AXIS, "prismatic": K.NON_UNIT_PRISMATIC},
 )
 def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
@@ -62,4 +64,7 @@ def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
             f"normalised it is {unit}",
             fix=f'Write <axis xyz="{unit}"/>.',
             variant="prismatic" if joint.type == "prismatic" else "",
+            repair=Repair(
+                "safe", f"normalise the axis to {unit}", (SetAttribute(el, "xyz", unit),)
+            ),
         )

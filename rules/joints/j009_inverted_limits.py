@@ -40,6 +40,7 @@ from urdflint.rules import consequences as K
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair, SetAttribute
 from urdflint.model.finding import Severity
 from urdflint.model.values import fmt
 
@@ -49,6 +50,7 @@ from urdflint.model.values import fmt
     "inverted-limits",
     Severity.ERROR,
     fix="Swap lower and upper so that lower < upper.",
+    fixable="unsafe",
     effects={"inverted": K.INVERTED_LIMITS, "equal": K.EQUAL_LIMITS},
 )
 def check(doc: Document) -> Iterator[Hit]:
@@ -66,6 +68,14 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"{fmt(lim.upper)} {unit}",
                 attribute="lower",
                 variant="inverted",
+                repair=Repair(
+                    "unsafe",
+                    f"swap lower and upper to [{fmt(lim.upper)}, {fmt(lim.lower)}]",
+                    (
+                        SetAttribute(lim.element, "lower", lim.element.get("upper") or ""),
+                        SetAttribute(lim.element, "upper", lim.element.get("lower") or ""),
+                    ),
+                ),
             )
         elif lim.lower == lim.upper:
             yield Hit(

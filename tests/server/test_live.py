@@ -55,6 +55,8 @@ def normalised(document: dict[str, Any]) -> dict[str, Any]:
     data = json.loads(json.dumps(document))
     for finding in data["findings"]:
         finding["path"] = Path(finding["path"]).name
+        for edit in (finding.get("autofix") or {}).get("edits", []):
+            edit["path"] = Path(edit["path"]).name
     data["models"] = {Path(k).name: v for k, v in data.get("models", {}).items()}
     data.pop("passed", None)
     return data

@@ -22,6 +22,7 @@ __all__ = ["EXIT_ERROR", "EXIT_FINDINGS", "EXIT_OK", "SettingsFinder", "UsageErr
 
 COMMANDS = {
     "check": check.run,
+    "fix": check.run,
     "info": info.run,
     "rules": rules.run_rules,
     "explain": rules.run_explain,

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint import __version__
+from urdflint.cli import fix
 from urdflint.cli.common import (
     EXIT_ERROR,
     EXIT_FINDINGS,
@@ -34,8 +35,18 @@ def _codes(value: str) -> list[str]:
     return [part.strip() for part in value.split(",") if part.strip()]
 
 
+HELP = {
+    "check": "lint files and folders (folders: every *.urdf below)",
+    "fix": "apply the automatic fixes, then report what is left (check --fix)",
+}
+
+
 def add_parser(sub: Any) -> None:
-    check = sub.add_parser("check", help="lint files and folders (folders: every *.urdf below)")
+    for name, text in HELP.items():
+        _options(sub.add_parser(name, help=text))
+
+
+def _options(check: argparse.ArgumentParser) -> None:
     check.add_argument("paths", nargs="+", metavar="PATH", help="file, folder, or - for stdin")
     check.add_argument(
         "--format",
@@ -87,6 +98,7 @@ def add_parser(sub: Any) -> None:
         "engines did)",
     )
     _more_options(check)
+    fix.add_options(check)
 
 
 def _more_options(check: argparse.ArgumentParser) -> None:
@@ -181,9 +193,17 @@ def run(args: argparse.Namespace) -> int:
     if args.emit_expanded and not (len(files) == 1 and linter.is_xacro(files[0])):
         raise UsageError("--emit-expanded needs exactly one xacro file")
     reports = _reports(args)
-    outcome = Run(errors=errors)
-    _lint_files(args, files, finder, outcome, context)
+
+    def lint() -> Run:
+        found = Run(errors=list(errors))
+        _lint_files(args, files, finder, found, context)
+        return found
+
+    outcome, done = fix.drive(args, files, lint)
+    if done is not None:
+        return done
     findings = _finish(args, finder, outcome, accepted)
+    fix.report(args, findings)
     for message in outcome.errors:
         print(f"urdflint: error: {message}", file=sys.stderr)
     fmt = args.format

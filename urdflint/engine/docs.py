@@ -7,6 +7,11 @@ from importlib import resources
 from urdflint.engine import registry
 from urdflint.engine.registry import Rule
 
+FIXABLE = {
+    "safe": "Fix: automatic and safe (`urdflint fix`, or `check --fix`).",
+    "unsafe": "Fix: automatic, but it changes the model's physics (`urdflint fix --unsafe-fixes`).",
+}
+
 
 def examples(code: str) -> list[tuple[str, str]]:
     """``(file name, text)`` of the rule's fixtures, bad ones first."""
@@ -21,6 +26,8 @@ def examples(code: str) -> list[tuple[str, str]]:
 
 def page(rule: Rule) -> str:
     lines = [f"{rule.code} {rule.name} (default severity: {rule.severity})", "", rule.summary, ""]
+    if rule.fixable:
+        lines += [FIXABLE[rule.fixable], ""]
     for heading in ("What it does", "Why is this bad?", "How to fix"):
         lines += [f"## {heading}", rule.section(heading), ""]
     if rule.effects:

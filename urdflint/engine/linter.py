@@ -9,7 +9,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from urdflint.engine import instances, registry, suppress
+from urdflint.engine import fixes, instances, registry, suppress
 from urdflint.engine.config import Settings
 from urdflint.engine.context import Context
 from urdflint.engine.registry import Hit, Rule
@@ -224,6 +224,7 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
         trace=trace,
         effects=effects,
         engine=hit.engine,
+        autofix=fixes.resolve(doc, hit.repair) if hit.repair is not None else None,
     )
 
 

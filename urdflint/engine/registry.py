@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from urdflint.model.edits import Repair
 from urdflint.model.effects import Effect, Effects
 from urdflint.model.finding import Severity
 
@@ -59,6 +60,7 @@ class Hit:
     variant: str = ""  # which of the rule's effect tables applies (e.g. "negative", "zero")
     engine: str | None = None  # E rules: the --confirm engine the hit is about
     effects: Mapping[str, Effect] | None = None  # target -> effect, when the rule works it out
+    repair: Repair | None = None  # the automatic fix (urdflint fix)
 
 
 Check = Callable[..., Iterator[Hit]]
@@ -78,6 +80,7 @@ class Rule:
     targets: frozenset[str] = frozenset()  # runs only for these targets (empty: always)
     effects: Effects = field(default_factory=dict)  # variant -> target -> effect
     by_target: bool = False  # severity: the worst effect on the selected targets
+    fixable: str | None = None  # "safe" or "unsafe" when the rule proposes automatic fixes
 
     def effect_table(self) -> list[tuple[str, str, str, str]]:
         """``(variant, target, consequence, detail)`` rows for the rule's page."""
@@ -116,6 +119,7 @@ def rule(
     targets: tuple[str, ...] = (),
     effects: Effects | None = None,
     by_target: bool = False,
+    fixable: str | None = None,
 ) -> Callable[[Check], Check]:
     """Register a rule; the module docstring is its documentation page.
 
@@ -150,6 +154,7 @@ def rule(
             frozenset(targets),
             dict(effects or {}),
             by_target,
+            fixable,
         )
         return fn
 

@@ -8,6 +8,7 @@ from dataclasses import asdict, dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from urdflint.model.edits import Autofix
     from urdflint.model.effects import Effect
 
 
@@ -60,6 +61,7 @@ class Finding:
     trace: tuple[Call, ...] = ()  # xacro: the macro calls behind the element, innermost first
     effects: tuple[tuple[str, Effect], ...] = ()  # what each selected target does with it
     engine: str | None = None  # E rules: the --confirm engine that did it
+    autofix: Autofix | None = None  # the automatic fix (urdflint fix), if the rule has one
 
     def __post_init__(self) -> None:
         if self.line < 1 or self.column < 1:
@@ -77,6 +79,7 @@ class Finding:
     def to_dict(self) -> dict[str, object]:
         data = asdict(self)
         data["severity"] = str(self.severity)
+        data["autofix"] = self.autofix.to_dict() if self.autofix is not None else None
         data["effects"] = {
             target: {"consequence": e.consequence.key, "detail": e.detail}
             for target, e in self.effects

@@ -33,6 +33,9 @@ def render(findings: Sequence[Finding], run: RunInfo) -> str:
         lines.append(info_summary(hidden))
     if run.matrix:
         lines.extend(matrix_text.table(run.matrix))
+    fixable = fixable_line(findings)
+    if fixable:
+        lines.append(fixable)
     lines.append(summary_line(findings, run))
     return "\n".join(lines) + "\n"
 
@@ -45,3 +48,16 @@ def info_summary(infos: Sequence[Finding]) -> str:
         shown += f", {len(counts) - MAX_CODES} more rules"
     noun = "info" if len(infos) == 1 else "infos"
     return f"{len(infos)} {noun} not shown: {shown} (--show-info lists them)"
+
+
+def fixable_line(findings: Sequence[Finding]) -> str | None:
+    """``3 fixable with urdflint fix (2 more with --unsafe-fixes)``."""
+    ready = [f.autofix for f in findings if f.autofix is not None and not f.autofix.unavailable]
+    safe = sum(1 for fix in ready if fix.applicability == "safe")
+    unsafe = len(ready) - safe
+    if not ready:
+        return None
+    if not safe:
+        return f"{unsafe} fixable with urdflint fix --unsafe-fixes"
+    more = f" ({unsafe} more with --unsafe-fixes)" if unsafe else ""
+    return f"{safe} fixable with urdflint fix{more}"

@@ -1,0 +1,138 @@
+"""``urdflint fix``: each fixable rule's bad fixtures become their ``fixed/`` twins byte for
+byte, fixes converge, and everything else in the file is kept."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import FIXTURES
+from tests.helpers import fixture_settings
+from urdflint.cli import main
+from urdflint.engine import config, fixes, linter, registry
+from urdflint.model import edits as E
+
+RULES = sorted(registry.load_rules().values(), key=lambda r: r.code)
+FIXABLE = [r for r in RULES if r.fixable]
+
+
+def pairs() -> list:
+    found = []
+    for rule in FIXABLE:
+        folder = FIXTURES / "rules" / rule.code
+        for expected in sorted((folder / "fixed").glob("*.urdf")):
+            found.append(
+                pytest.param(
+                    rule, folder / expected.name, expected, id=f"{rule.code}/{expected.name}"
+                )
+            )
+    return found
+
+
+def copy_fixture(bad: Path, tmp_path: Path) -> Path:
+    """The fixture (and its settings file and meshes) in a folder of its own."""
+    target = tmp_path / bad.name
+    shutil.copyfile(bad, target)
+    for extra in (bad.with_suffix(".toml"), bad.parent / "meshes"):
+        if extra.is_file():
+            shutil.copyfile(extra, tmp_path / extra.name)
+        elif extra.is_dir():
+            shutil.copytree(extra, tmp_path / extra.name)
+    return target
+
+
+def fix_file(path: Path, code: str, unsafe: bool) -> int:
+    argv = ["fix", "--isolated", "--select", code, "--exit-zero", str(path)]
+    toml = path.with_suffix(".toml")
+    if toml.is_file():
+        data = config.from_mapping(__import__("tomllib").loads(toml.read_text()))
+        argv += [f"--target={t}" for t in data.targets]
+    return main(argv + (["--unsafe-fixes"] if unsafe else []))
+
+
+@pytest.mark.parametrize("rule", FIXABLE, ids=lambda r: r.code)
+def test_every_fixable_rule_has_a_fixture_pair(rule: registry.Rule) -> None:
+    assert list((FIXTURES / "rules" / rule.code / "fixed").glob("*.urdf")), rule.code
+
+
+@pytest.mark.parametrize(("rule", "bad", "expected"), pairs())
+def test_fix_gives_the_expected_text_and_converges(
+    rule, bad: Path, expected: Path, tmp_path, capsys
+) -> None:
+    path = copy_fixture(bad, tmp_path)
+    fix_file(path, rule.code, unsafe=rule.fixable == "unsafe")
+    assert path.read_bytes() == expected.read_bytes()
+    again = path.read_bytes()
+    fix_file(path, rule.code, unsafe=True)
+    assert path.read_bytes() == again  # a second run changes nothing
+    settings = fixture_settings(bad)
+    settings = config.Settings(**{**settings.__dict__, "select": (rule.code,)})
+    left = [f for f in linter.lint_path(path, str(path), settings).findings if f.code == rule.code]
+    assert all(f.autofix is None or f.autofix.unavailable for f in left), left
+    capsys.readouterr()
+
+
+def test_unsafe_fixes_wait_for_the_flag(tmp_path: Path, capsys) -> None:
+    path = copy_fixture(FIXTURES / "rules" / "J009" / "bad.urdf", tmp_path)
+    before = path.read_bytes()
+    main(["fix", "--isolated", "--select", "J009", str(path)])
+    assert path.read_bytes() == before
+    assert "more with --unsafe-fixes" in capsys.readouterr().err
+
+
+def test_diff_changes_nothing_and_exits_one(tmp_path: Path, capsys) -> None:
+    path = copy_fixture(FIXTURES / "rules" / "J008" / "bad.urdf", tmp_path)
+    before = path.read_bytes()
+    assert main(["check", "--diff", "--isolated", "--select", "J008", str(path)]) == 1
+    out = capsys.readouterr().out
+    assert path.read_bytes() == before
+    assert out.startswith(f"--- {path}\n+++ {path}\n@@ ")
+    assert main(["check", "--diff", "--isolated", "--select", "J011", str(path)]) == 0
+
+
+def test_json_carries_the_fix(tmp_path: Path, capsys) -> None:
+    path = copy_fixture(FIXTURES / "rules" / "J008" / "bad.urdf", tmp_path)
+    main(["check", "--format", "json", "--isolated", "--select", "J008", str(path)])
+    finding = json.loads(capsys.readouterr().out)["findings"][0]
+    fix = finding["autofix"]
+    assert fix["applicability"] == "safe" and fix["description"].startswith("normalise")
+    (edit,) = fix["edits"]
+    assert set(edit) == {"path", "start", "end", "content"}
+    assert edit["start"]["line"] == finding["line"]
+
+
+def test_fix_refuses_standard_input(capsys) -> None:
+    assert main(["fix", "-"]) == 2
+    assert "need files" in capsys.readouterr().err
+
+
+def test_edits_keep_everything_else() -> None:
+    data = (
+        b"<robot>\r\n  <!-- keep -->\r\n  <a x=\"1\"  y='2'/>\r\n"
+        b"  <b>\r\n    <c/>\r\n  </b>\r\n</robot>\r\n"
+    )
+    a = data.index(b"<a")
+    b = data.index(b"<b")
+    span = E.attribute_span(data, a, "y")
+    assert span is not None and data[span[1] : span[2]] == b"2"
+    start, end = E.line_span(data, b, E.element_end(data, b))
+    assert data[start:end] == b"  <b>\r\n    <c/>\r\n  </b>\r\n"
+    new, left = E.apply(data, [E.Edit("f", span[1], span[2], "3"), E.Edit("f", start, end, "")])
+    assert (
+        left == [] and new == b"<robot>\r\n  <!-- keep -->\r\n  <a x=\"1\"  y='3'/>\r\n</robot>\r\n"
+    )
+    assert E.newline(data) == "\r\n"
+
+
+def test_overlapping_edits_wait_for_the_next_round() -> None:
+    data = b"abcdef"
+    new, left = E.apply(data, [E.Edit("f", 0, 3, "X"), E.Edit("f", 2, 4, "Y")])
+    assert new == b"Xdef" and [e.text for e in left] == ["Y"]
+
+
+def test_fixes_cache_is_cleared() -> None:
+    fixes.forget_files()
+    assert fixes._FILES == {}

@@ -1,0 +1,110 @@
+"""``urdflint fix`` / ``check --fix``: apply the automatic fixes, round after round.
+
+A round lints every file, applies the fixes of the findings (safe ones; unsafe ones too with
+``--unsafe-fixes``) as text edits, and writes the files; the next round lints the result, so
+a fix that only becomes possible after another (or that overlapped another) is applied then.
+Rounds stop when nothing changes. ``--diff`` prints what the first round would change, as a
+unified diff, and writes nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import difflib
+import sys
+from collections.abc import Callable
+from typing import Any
+
+from urdflint.cli.common import EXIT_FINDINGS, EXIT_OK, UsageError
+
+MAX_ROUNDS = 4
+
+
+def add_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--fix",
+        action="store_true",
+        help="apply the automatic fixes (safe ones; see --unsafe-fixes) and report what is left",
+    )
+    parser.add_argument(
+        "--unsafe-fixes",
+        action="store_true",
+        help="also apply fixes that change the model's physics (inertias, limits)",
+    )
+    parser.add_argument(
+        "--diff",
+        action="store_true",
+        help="print the fixes as a unified diff and change nothing (exit 1 if there is one)",
+    )
+
+
+def rounds(args: argparse.Namespace, lint: Callable[[], Any]) -> tuple[Any, dict[str, bytes], int]:
+    """Lint and fix until nothing changes; the last lint's outcome, each changed file's
+    original bytes, and how many fixes were applied."""
+    from urdflint.engine import fixes
+
+    originals: dict[str, bytes] = {}
+    applied = 0
+    outcome = lint()
+    for _ in range(MAX_ROUNDS):
+        found = [f.autofix for f in outcome.findings if f.autofix is not None]
+        changed = fixes.apply_all(found, unsafe=args.unsafe_fixes)
+        if not changed:
+            break
+        for path, (old, new, count) in changed.items():
+            originals.setdefault(path, old)
+            applied += count
+            with open(path, "wb") as out:
+                out.write(new)
+        fixes.forget_files()
+        outcome = lint()
+    return outcome, originals, applied
+
+
+def diff(args: argparse.Namespace, outcome: Any) -> int:
+    """Print the first round's fixes as a unified diff; the number of files it changes."""
+    from urdflint.engine import fixes
+
+    found = [f.autofix for f in outcome.findings if f.autofix is not None]
+    changed = fixes.apply_all(found, unsafe=args.unsafe_fixes)
+    for path, (old, new, _) in sorted(changed.items()):
+        sys.stdout.writelines(
+            difflib.unified_diff(
+                old.decode("utf-8", "replace").splitlines(keepends=True),
+                new.decode("utf-8", "replace").splitlines(keepends=True),
+                fromfile=path,
+                tofile=path,
+            )
+        )
+    return len(changed)
+
+
+def drive(
+    args: argparse.Namespace, files: list[str], lint: Callable[[], Any]
+) -> tuple[Any, int | None]:
+    """The run's outcome: linted, or fixed then linted; with ``--diff``, the exit code."""
+    fixing = args.command == "fix" or args.fix
+    if (fixing or args.diff) and "-" in files:
+        raise UsageError("--fix and --diff need files, not standard input")
+    if args.diff:
+        return None, EXIT_FINDINGS if diff(args, lint()) else EXIT_OK
+    if not fixing:
+        return lint(), None
+    outcome, originals, applied = rounds(args, lint)
+    args.fixed = (len(originals), applied)
+    return outcome, None
+
+
+def report(args: argparse.Namespace, findings: list[Any]) -> None:
+    """One line on stderr: what was fixed, and what more ``--unsafe-fixes`` would fix."""
+    if not hasattr(args, "fixed"):
+        return
+    files, applied = args.fixed
+    left = [f for f in findings if f.autofix is not None and not f.autofix.unavailable]
+    unsafe = args.unsafe_fixes
+    more = sum(1 for f in left if f.autofix.applicability == "unsafe") if not unsafe else 0
+    text = f"urdflint: fixed {applied} finding{'s' if applied != 1 else ''}"
+    text += f" in {files} file{'s' if files != 1 else ''}"
+    if more:
+        text += f"; {more} more with --unsafe-fixes"
+    print(text, file=sys.stderr)

@@ -1,0 +1,183 @@
+"""Turn a rule's :class:`~urdflint.model.edits.Repair` into text edits, and apply them.
+
+An operation on an element becomes an edit at the element's exact span: in the URDF file
+itself, or, for a document expanded from xacro, in the file and at the line where the
+element is written (the xacro source map). A value that the xacro source computes (``${...}``,
+``$(...)``) cannot be edited there: the fix is reported as unavailable, with the reason.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+from lxml import etree
+
+from urdflint.model import edits as E
+from urdflint.model.document import Document
+from urdflint.model.edits import Autofix, Edit, Repair
+from urdflint.model.positions import Lines
+
+EXPRESSION = ("${", "$(")
+INDENT = "  "
+
+
+class Unavailable(Exception):
+    """Why an operation cannot become an edit."""
+
+
+@dataclass(frozen=True)
+class Place:
+    """Where an element's start tag is written: the file, its bytes, the offset."""
+
+    path: str
+    data: bytes
+    start: int
+
+
+def resolve(doc: Document, repair: Repair) -> Autofix:
+    """The repair as edits, or the reason it cannot be applied automatically."""
+    found: list[Edit] = []
+    try:
+        for operation in repair.operations:
+            found.extend(_edits(doc, operation))
+    except Unavailable as exc:
+        return Autofix(repair.applicability, repair.description, (), str(exc))
+    return Autofix(repair.applicability, repair.description, tuple(found))
+
+
+def _edits(doc: Document, op: E.Operation) -> list[Edit]:
+    if isinstance(op, E.SetAttribute):
+        place = locate(doc, op.element)
+        span = E.attribute_span(place.data, place.start, op.name)
+        if span is None:  # not written yet: add it at the end of the start tag
+            end = E.start_tag_end(place.data, place.start)
+            end -= 2 if place.data[end - 2 : end] == b"/>" else 1
+            return [edit(place, end, end, f' {op.name}="{_quoted(op.value)}"')]
+        _literal(place.data[span[1] : span[2]])
+        return [edit(place, span[1], span[2], _quoted(op.value))]
+    if isinstance(op, E.RemoveAttribute):
+        place = locate(doc, op.element)
+        span = E.attribute_span(place.data, place.start, op.name)
+        if span is None:
+            return []
+        begin = span[0]
+        while begin > 0 and place.data[begin - 1 : begin].isspace():
+            begin -= 1
+        return [edit(place, begin, span[2] + 1, "")]
+    if isinstance(op, E.RemoveElement):
+        place = locate(doc, op.element)
+        start, end = E.line_span(place.data, place.start, E.element_end(place.data, place.start))
+        return [edit(place, start, end, "")]
+    if isinstance(op, E.RenameElement):
+        return _rename(locate(doc, op.element), op)
+    return _insert(doc, op)
+
+
+def _rename(place: Place, op: E.RenameElement) -> list[Edit]:
+    old = etree.QName(op.element).localname.encode()
+    first = edit(place, place.start + 1, place.start + 1 + len(old), op.tag)
+    end = E.element_end(place.data, place.start)
+    closing = b"</" + old
+    at = place.data.rfind(closing, place.start, end)
+    if place.data[end - 2 : end] == b"/>" or at < 0:
+        return [first]
+    return [first, edit(place, at + 2, at + 2 + len(old), op.tag)]
+
+
+def _insert(doc: Document, op: E.InsertChild) -> list[Edit]:
+    parent = locate(doc, op.parent)
+    data, nl = parent.data, E.newline(parent.data)
+    unit = INDENT
+    if op.after is not None:
+        after = locate(doc, op.after)
+        at = E.element_end(data, after.start)
+        pad = E.indentation(data, after.start).decode()
+        return [edit(parent, at, at, nl + pad + op.xml.replace("\n", nl + pad))]
+    pad = E.indentation(data, parent.start).decode() + unit
+    body = op.xml.replace("\n", nl + pad)
+    end = E.start_tag_end(data, parent.start)
+    if data[end - 2 : end] == b"/>":  # <link name="x"/> -> <link name="x"> ... </link>
+        tag = etree.QName(op.parent).localname
+        outer = E.indentation(data, parent.start).decode()
+        text = f">{nl}{pad}{body}{nl}{outer}</{tag}>"
+        return [edit(parent, end - 2, end, text)]
+    return [edit(parent, end, end, nl + pad + body)]
+
+
+def _quoted(value: str) -> str:
+    return value.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;")
+
+
+def _literal(raw: bytes) -> None:
+    text = raw.decode("utf-8", "replace")
+    if any(marker in text for marker in EXPRESSION):
+        raise Unavailable(f"the value is computed by xacro ({text.strip()}): edit it by hand")
+
+
+def edit(place: Place, start: int, end: int, text: str) -> Edit:
+    lines = Lines(place.data)
+    line, column = lines.position(start)
+    end_line, end_column = lines.position(end)
+    return Edit(place.path, start, end, text, line, column, end_line, end_column)
+
+
+_FILES: dict[str, bytes] = {}
+
+
+def locate(doc: Document, element: etree._Element) -> Place:
+    """Where ``element`` is written (raises :class:`Unavailable`)."""
+    if doc.origin is None:
+        offset = doc._tag_offset(element)
+        if offset is None or doc.path in ("-", "<stdin>") or doc.recovered:
+            raise Unavailable("the element's position in the file is not known")
+        return Place(doc.path, doc.source, offset)
+    origin = doc.origin(element, None)
+    if origin is None or not origin.exact:
+        raise Unavailable("the element is generated by xacro, not written in a file")
+    data = _FILES.get(origin.path)
+    if data is None:
+        try:
+            data = _FILES[origin.path] = Path(origin.path).read_bytes()
+        except OSError as exc:
+            raise Unavailable(f"{origin.path} cannot be read ({exc.strerror})") from None
+    lines = Lines(data)
+    if origin.line > len(lines.starts):
+        raise Unavailable("the element's position in its file is not known")
+    line_start = lines.starts[origin.line - 1]
+    text = data[line_start:].decode("utf-8", "replace")[: origin.column - 1]
+    offset = line_start + len(text.encode("utf-8"))
+    if not data.startswith(b"<", offset):
+        raise Unavailable("the element's position in its file is not known")
+    return Place(origin.path, data, offset)
+
+
+def forget_files() -> None:
+    """Drop the cached source files (between fix rounds: they changed)."""
+    _FILES.clear()
+
+
+def apply_all(
+    fixes: Iterable[Autofix], unsafe: bool = False
+) -> dict[str, tuple[bytes, bytes, int]]:
+    """``{path: (old bytes, new bytes, fixes applied)}`` for the applicable fixes."""
+    by_path: dict[str, list[Edit]] = {}
+    counts: dict[str, int] = {}
+    for fix in fixes:
+        if fix.unavailable or not fix.edits or (fix.applicability == "unsafe" and not unsafe):
+            continue
+        for e in fix.edits:
+            by_path.setdefault(e.path, []).append(e)
+        first = fix.edits[0].path
+        counts[first] = counts.get(first, 0) + 1
+    changed: dict[str, tuple[bytes, bytes, int]] = {}
+    for path, found in by_path.items():
+        try:
+            old = Path(path).read_bytes()
+        except OSError:
+            continue
+        new, _ = E.apply(old, found)
+        if new != old:
+            changed[path] = (old, new, counts.get(path, 0))
+    return changed
