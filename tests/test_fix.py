@@ -136,3 +136,50 @@ def test_overlapping_edits_wait_for_the_next_round() -> None:
 def test_fixes_cache_is_cleared() -> None:
     fixes.forget_files()
     assert fixes._FILES == {}
+
+
+MACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm" params="name parent ax">
+    <joint name="${name}_j" type="revolute">
+      <parent link="${parent}"/>
+      <child link="${name}"/>
+      <axis xyz="${ax}"/>
+      <limit lower="1" upper="-1" effort="1" velocity="1"/>
+    </joint>
+    <joint name="${name}_f" type="fixed">
+      <parent link="${name}"/>
+      <child link="${name}_tip"/>
+      <axis xyz="0 0 2"/>
+    </joint>
+    <link name="${name}"><inertial><mass value="1"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    <link name="${name}_tip"/>
+  </xacro:macro>
+</robot>
+"""
+ENTRY = """<?xml version="1.0"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="parts.xacro"/>
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <xacro:arm name="a" parent="base" ax="0 0 3"/>
+</robot>
+"""
+
+
+def test_xacro_fixes_go_to_the_macro_and_skip_computed_values(tmp_path: Path, capsys) -> None:
+    (tmp_path / "parts.xacro").write_text(MACRO)
+    entry = tmp_path / "robot.urdf.xacro"
+    entry.write_text(ENTRY)
+    main(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", str(entry)])
+    out = capsys.readouterr().out
+    assert entry.read_text() == ENTRY  # nothing to fix is written in the entry file
+    fixed = (tmp_path / "parts.xacro").read_text()
+    assert '<limit lower="-1" upper="1" effort="1" velocity="1"/>' in fixed  # J009, unsafe
+    assert 'xyz="0 0 2"' not in fixed  # J006: the fixed joint's axis is gone
+    assert '<axis xyz="${ax}"/>' in fixed  # J008: computed by xacro, left alone
+    assert "J008" in out and "[fix]" not in out.split("J008", 1)[1].splitlines()[0]
+    main(["check", "--isolated", "--format", "json", "--select", "J008", str(entry)])
+    (finding,) = json.loads(capsys.readouterr().out)["findings"]
+    assert finding["autofix"]["unavailable"].startswith("the value is computed by xacro (${ax})")

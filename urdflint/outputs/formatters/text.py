@@ -24,7 +24,9 @@ def render(findings: Sequence[Finding], run: RunInfo) -> str:
         if f.severity is Severity.INFO and not run.show_info:
             hidden.append(f)
             continue
-        lines.append(f"{f.path}:{f.line}:{f.column}: {f.severity} {f.code} {f.name}: {f.message}")
+        lines.append(
+            f"{f.path}:{f.line}:{f.column}: {f.severity} {f.code} {f.name}: {f.message}{mark(f)}"
+        )
         lines.extend(f"    {call}" for call in f.trace)  # xacro: the macro calls, innermost first
         effects = matrix_text.effects_line(f)
         if effects:
@@ -48,6 +50,14 @@ def info_summary(infos: Sequence[Finding]) -> str:
         shown += f", {len(counts) - MAX_CODES} more rules"
     noun = "info" if len(infos) == 1 else "infos"
     return f"{len(infos)} {noun} not shown: {shown} (--show-info lists them)"
+
+
+def mark(finding: Finding) -> str:
+    """`` [fix]`` or `` [unsafe fix]`` after a finding that ``urdflint fix`` can repair."""
+    fix = finding.autofix
+    if fix is None or fix.unavailable or not fix.edits:
+        return ""
+    return " [fix]" if fix.applicability == "safe" else " [unsafe fix]"
 
 
 def fixable_line(findings: Sequence[Finding]) -> str | None:
