@@ -64,10 +64,11 @@ def effects_section(rule: Rule) -> list[str]:
 
 def rule_table() -> str:
     """The Markdown table README carries between its rule-table markers."""
-    rows = ["| Code | Name | Severity | What it catches |", "|---|---|---|---|"]
+    rows = ["| Code | Name | Severity | Fix | What it catches |", "|---|---|---|---|---|"]
     for rule in sorted(registry.load_rules().values(), key=lambda r: r.code):
         summary = rule.summary.replace("|", "\\|")
-        rows.append(f"| {rule.code} | {rule.name} | {rule.severity} | {summary} |")
+        fix = rule.fixable or ""
+        rows.append(f"| {rule.code} | {rule.name} | {rule.severity} | {fix} | {summary} |")
     return "\n".join(rows) + "\n"
 
 
