@@ -11,6 +11,10 @@ Endpoints (OpenAPI at ``/openapi.json``, shown by ``/docs``, which works offline
                         as query parameters or form fields (``options.py``). 200 with the
                         CLI's ``--format json`` document plus ``passed``, whenever linting
                         ran, even on a broken model
+``POST /v1/fix``        the same request plus ``unsafe_fixes``: the automatic fixes applied
+                        to the uploaded file in rounds, as ``urdflint fix`` (``fixing.py``);
+                        200 with the check's document for the fixed file plus ``fixed``
+                        (its text), ``diff`` (unified) and ``applied`` (how many)
 ``GET /v1/capabilities`` targets, formats, whether ``confirm`` is allowed and which
                         engines are installed, the limits (touches no worker)
 ``GET /v1/rules``       the rule catalogue (as ``urdflint rules --format json``)
@@ -53,8 +57,9 @@ own process with a memory limit and a timeout, within the job's time limit, on a
 the model that only references the upload's files (``confirming.py``).
 
 :func:`create_app` assembles the app: the routes of ``routes_meta.py`` (probes, rules),
-``routes_check.py`` (the check) and ``page.py`` (the web page, security headers), the
-limits middleware (``limits.Guard``) and one worker pool, kept in ``app.state``.
+``routes_check.py`` (the check), ``routes_fix.py`` (the fix) and ``page.py`` (the web page,
+security headers), the limits middleware (``limits.Guard``) and one worker pool, kept in
+``app.state``.
 """
 
 from __future__ import annotations
@@ -73,7 +78,7 @@ from urdflint import __version__
 from urdflint.engine import registry
 
 from . import options as opts
-from . import page, routes_check, routes_meta
+from . import page, routes_check, routes_fix, routes_meta
 from .limits import Guard, Limits
 from .page import SecurityHeaders
 from .pool import Pool
@@ -87,6 +92,10 @@ DESCRIPTION = """Lint robot descriptions (URDF and xacro) with every urdflint ru
 plus `passed`. Send the URDF as the raw body (`Content-Type: application/xml`) or as the
 `urdf` part of a multipart form, with an optional `meshes` zip whose top-level folders
 (and `package.xml` files) are the ROS packages `package://` URIs resolve against.
+
+`POST /v1/fix` takes the same request (plus `unsafe_fixes`) and applies the automatic fixes
+to the uploaded file, as `urdflint fix`: it returns the fixed file as `fixed`, a unified
+`diff`, the number of fixes `applied`, and the check's document for the fixed file.
 """
 
 
@@ -137,6 +146,7 @@ def create_app(limits: Limits | None = None, *, exit_on_failure: bool = False) -
     # routes in this order: the OpenAPI document lists them so
     app.include_router(routes_meta.router)
     app.include_router(routes_check.router)
+    app.include_router(routes_fix.router)
     app.include_router(page.router)
     page.mount_static(app)  # after the middleware above: its own runs outermost
     return app

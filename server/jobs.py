@@ -2,7 +2,12 @@
 
 :class:`CheckJob` is one ``POST /v1/check``: the upload is written to the request's folder,
 the meshes zip extracted next to it, and the model linted with urdflint confined to that
-folder (``Context(root=...)``); paths in the findings are made relative to it.
+folder (``Context(root=...)``); paths in the findings are made relative to it. With ``fix``
+(``POST /v1/fix``) the upload is fixed in rounds first (``fixing.py``) and the answer has
+the fixed text and its diff. Linting runs with that folder as the current folder, so the
+file names findings and fixes use (the upload's name, an include's path in the zip) name
+the upload's files, and the engine's cache of source files is emptied before and after
+each lint: a job never sees another job's bytes.
 :class:`ReadyJob` is one ``GET /readyz``: a tiny model built with Pinocchio and a tiny mesh
 loaded with trimesh. :func:`run` does either and always answers: a status, a content and
 a media type, which the app turns into the response.
@@ -23,6 +28,8 @@ from .fence import fenced
 
 if TYPE_CHECKING:
     from urdflint.engine.config import Settings
+    from urdflint.engine.context import Context
+    from urdflint.engine.linter import Result
 
     from .uploads import ZipLimits
 
@@ -44,6 +51,8 @@ class CheckJob:
     zip_limits: ZipLimits | None = None
     matrix: bool = False  # add the compatibility matrix (``matrix`` option)
     timeout: float = 60.0  # the job's time limit: the engines (``confirm``) must fit in it
+    fix: bool = False  # POST /v1/fix: fix the upload first, answer the fixed text and diff
+    unsafe_fixes: bool = False  # ... with the fixes that change the physics too
 
 
 @dataclass(frozen=True)
@@ -74,7 +83,9 @@ def run(job: CheckJob | ReadyJob) -> dict[str, Any]:
 
 
 def check(job: CheckJob) -> dict[str, Any]:
-    """Lint the upload inside the fence: the findings document, or a rendered format."""
+    """Lint (or fix) the upload inside the fence: the findings document, or a rendered format."""
+    from urdflint.engine.context import Context
+
     from .uploads import Rejected, ZipLimits, extract
 
     root = Path(job.folder) / "files"
@@ -93,29 +104,61 @@ def check(job: CheckJob) -> dict[str, Any]:
         fd = os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
         with os.fdopen(fd, "wb") as out:
             out.write(job.urdf)
-        if not job.settings.confirm:
-            return _lint(job, root, target, packages, Scrub(root, Path(job.folder)))
+        return _checked(job, root, target, Context(package_paths=packages, root=root, environ={}))
+
+
+def _checked(job: CheckJob, root: Path, target: Path, context: Context) -> dict[str, Any]:
+    """Fix the written upload (``fix``), lint it (with the engines for ``confirm``); the
+    answer in the job's format."""
+    from . import fixing
+
+    result = None
+    if job.fix:  # the rounds without the engines: only the last lint needs them
+        quick = replace(job.settings, confirm=())
+        result, original, applied = fixing.rounds(
+            lambda: _lint_file(job, root, target, context, quick),
+            target,
+            job.name,
+            job.unsafe_fixes,
+        )
+    if not job.settings.confirm:
+        if result is None:
+            result = _lint_file(job, root, target, context, job.settings)
+        answer = _answer(job, result, Scrub(root, Path(job.folder)))
+    else:
         from .confirming import confined
 
         with confined(root, job.timeout) as engines:
-            scrub = Scrub(root, Path(job.folder), engines.shown)
-            return _lint(job, root, target, packages, scrub)
+            result = _lint_file(job, root, target, context, job.settings)
+            answer = _answer(job, result, Scrub(root, Path(job.folder), engines.shown))
+    if job.fix:
+        fixing.answer(answer, job.name, original, applied, target.read_bytes())
+    return answer
 
 
-def _lint(
-    job: CheckJob, root: Path, target: Path, packages: dict[str, Path], scrub: Scrub
-) -> dict[str, Any]:
-    """Lint the written upload; the answer in the job's format."""
+def _lint_file(
+    job: CheckJob, root: Path, target: Path, context: Context, settings: Settings
+) -> Result:
+    """Lint the written upload from inside its folder (see the module's docstring)."""
+    from urdflint.engine import fixes, linter
+
+    fixes.forget_files()
+    try:
+        with contextlib.chdir(root):
+            return linter.lint_path(target, job.name, settings, context)
+    finally:
+        fixes.forget_files()
+
+
+def _answer(job: CheckJob, result: Result, scrub: Scrub) -> dict[str, Any]:
+    """The linted upload's answer in the job's format."""
     from urdflint import __version__
-    from urdflint.engine import linter, matrix
-    from urdflint.engine.context import Context
+    from urdflint.engine import matrix
     from urdflint.model.finding import Finding
     from urdflint.outputs import formatters
     from urdflint.outputs.report import FAIL_LEVEL, model_summary, skipped_note
 
     settings = job.settings
-    context = Context(package_paths=packages, root=root, environ={})
-    result = linter.lint_path(target, job.name, settings, context)
     scrubbed: list[Finding] = [scrub.finding(f) for f in result.findings]
     findings = list(scrubbed)
     skipped = dict(result.skipped)

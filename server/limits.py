@@ -27,7 +27,7 @@ Environment variables (sizes accept a ``K``/``M``/``G`` suffix, powers of 1024):
 The guard is a pure ASGI middleware, because FastAPI and Starlette put no limit on a
 request body (ecosystem notes §7.2): it refuses a ``Content-Length`` over the limit before
 reading anything and counts the bytes of a chunked body as they arrive (413). It also
-admits at most ``jobs + queue`` lint requests at a time (503 with ``Retry-After``), before
+admits at most ``jobs + queue`` lint (and fix) requests at a time (503 with ``Retry-After``), before
 their bodies are read, so a flood of uploads cannot fill the disk.
 """
 
@@ -51,7 +51,7 @@ ASGIApp = Callable[[Scope, Receive, Send], Awaitable[None]]
 MiB = 2**20
 FORM_SLACK = MiB  # multipart boundaries, part headers and the option fields
 SIZE_RE = re.compile(r"^\s*(\d+)\s*([kmg]?)(?:i?b)?\s*$", re.I)
-CHECK_PATH = "/v1/check"
+LINT_PATHS = ("/v1/check", "/v1/fix")  # the requests that upload a model and run a job
 
 
 class LimitError(ValueError):
@@ -115,7 +115,7 @@ class Limits:
         return cls(**values)
 
     def body_limit(self, content_type: str) -> int:
-        """The most bytes a ``/v1/check`` body of this content type may have."""
+        """The most bytes a ``/v1/check`` (or ``/v1/fix``) body of this type may have."""
         if content_type.split(";")[0].strip().lower() == "multipart/form-data":
             return self.max_urdf_bytes + self.max_zip_bytes + FORM_SLACK
         return self.max_urdf_bytes
@@ -180,7 +180,8 @@ async def _reply(send: Send, status: int, detail: str, headers: list[tuple[bytes
 
 
 class Guard:
-    """Body size limits for every request, and admission control for ``/v1/check``."""
+    """Body size limits for every request, and admission control for ``/v1/check`` and
+    ``/v1/fix``."""
 
     def __init__(self, app: ASGIApp, limits: Limits) -> None:
         self.app = app
@@ -193,7 +194,7 @@ class Guard:
             return
         headers = dict(scope.get("headers") or ())
         content_type = headers.get(b"content-type", b"").decode("latin-1")
-        is_check = scope.get("path", "").rstrip("/") == CHECK_PATH
+        is_check = scope.get("path", "").rstrip("/") in LINT_PATHS
         limit = self.limits.body_limit(content_type) if is_check else 64 * 1024
         length = headers.get(b"content-length")
         if length is not None and (not length.strip().isdigit() or int(length) > limit):

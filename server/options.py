@@ -1,4 +1,5 @@
-"""The options of ``POST /v1/check``, from the query string and form fields, as CLI settings.
+"""The options of ``POST /v1/check`` and ``/v1/fix``, from the query string and form fields, as
+CLI settings.
 
 Every option may come as a query parameter or (multipart requests) as a form field; list
 options (``select``, ``ignore``, ``target``, ``xacro_args``, ``q``) take repeated values,
@@ -40,6 +41,9 @@ are applied by the CLI's own :class:`~urdflint.engine.options.SettingsFinder`, s
                          ``URDFLINT_TIMEOUT``. The ``confirm`` key of ``config`` is the same
 ``filename``             the name to show for a raw XML body (default ``robot.urdf``; a
                          ``.xacro`` name makes it a xacro file)
+``unsafe_fixes``         ``POST /v1/fix`` only: true to also apply the fixes that change the
+                         model's physics, as ``--unsafe-fixes`` (refused by ``/v1/check``,
+                         which changes nothing; ``/v1/fix`` answers JSON only)
 
 Unknown form fields are refused (422), so a misspelt option never goes unnoticed.
 """
@@ -61,7 +65,8 @@ from urdflint.model import targets
 
 LISTS = ("select", "ignore", "target", "xacro_args", "q", "confirm")
 SCALARS = (
-    "fail_on", "expect_mass", "expect_com", "config", "format", "svg", "matrix", "filename"
+    "fail_on", "expect_mass", "expect_com", "config", "format", "svg", "matrix", "filename",
+    "unsafe_fixes",
 )  # fmt: skip
 ALIASES = {"targets": "target", "xacro_arg": "xacro_args", "fail": "fail_on"}
 FORMATS = ("json", "sarif", "text", "github")
@@ -85,6 +90,8 @@ class Options:
     svg: bool = False
     filename: str | None = None
     matrix: bool = False
+    fix: bool = False  # POST /v1/fix: apply the automatic fixes to the upload
+    unsafe_fixes: bool = False  # ... the ones that change the physics too
 
 
 def canonical(name: str) -> str | None:
@@ -186,15 +193,23 @@ def _engines(values: Mapping[str, list[str]]) -> list[tuple[str, ...]]:
         raise OptionError(f"confirm: {exc}") from None
 
 
-def parse(values: Mapping[str, list[str]], allow_confirm: bool = False) -> Options:
+def parse(
+    values: Mapping[str, list[str]], allow_confirm: bool = False, fix: bool = False
+) -> Options:
     """Validate the options and build the settings exactly as ``urdflint check`` would.
 
     ``allow_confirm``: whether the server runs engines (``urdflint serve --allow-confirm``);
     without it, engines named by ``confirm`` or the config's ``confirm`` key are a 422.
+    ``fix``: the options of ``POST /v1/fix`` (``unsafe_fixes``; JSON answers only).
     """
     fmt = (_last(values, "format") or "json").lower()
     if fmt not in FORMATS:
         raise OptionError(f"format: must be one of {', '.join(FORMATS)}, not {fmt!r}")
+    if fix and fmt != "json":
+        raise OptionError(f"format: POST /v1/fix answers JSON only, not {fmt!r}")
+    unsafe = _flag(values, "unsafe_fixes")
+    if unsafe and not fix:
+        raise OptionError("unsafe_fixes: /v1/check changes nothing; POST /v1/fix applies fixes")
     if fmt == "sarif" and importlib.util.find_spec("urdflint.outputs.formatters.sarif") is None:
         raise OptionError("format: sarif is not available on this server")
     svg, matrix = _flag(values, "svg"), _flag(values, "matrix")
@@ -232,4 +247,4 @@ def parse(values: Mapping[str, list[str]], allow_confirm: bool = False) -> Optio
         raise OptionError(NO_CONFIRM)
     if matrix and not target and settings.targets == targets.DEFAULT_TARGETS:
         settings = dataclasses.replace(settings, targets=tuple(targets.TARGETS))  # every row
-    return Options(settings, fmt, svg, _last(values, "filename"), matrix)
+    return Options(settings, fmt, svg, _last(values, "filename"), matrix, fix, unsafe)

@@ -4,7 +4,8 @@ The URDF comes as a raw XML body (``application/xml``, ``text/xml``, ``*+xml``) 
 ``urdf`` part of a ``multipart/form-data`` form with an optional ``meshes`` zip; the options
 as query parameters or form fields (``options.py``). Each job runs in a per-request
 temporary folder that is removed afterwards; so do the engines of ``confirm``, which only
-a server started with ``--allow-confirm`` accepts (``confirming.py``).
+a server started with ``--allow-confirm`` accepts (``confirming.py``). ``POST /v1/fix``
+(``routes_fix.py``) reads its request with the same code (:func:`handle`).
 """
 
 from __future__ import annotations
@@ -31,6 +32,10 @@ from .uploads import ZipLimits, urdf_name
 XML_TYPES = ("application/xml", "text/xml")
 TARGET_HELP = "|".join((*targets.TARGETS, targets.ALL))
 FORM_FIELD_BYTES = 128 * 1024
+NOT_UTF8 = (
+    "the file is not UTF-8 text: /v1/fix answers the fixed file as JSON text, so it fixes "
+    "UTF-8 (or ASCII) files only; convert it, or lint it with /v1/check"
+)
 
 CHECK_BODY = {
     "required": True,
@@ -118,16 +123,22 @@ async def check(
     filename: Annotated[str | None, Query(description="name shown for a raw XML body")] = None,
 ) -> Response:
     """Lint one URDF or xacro file (and its meshes) with the CLI's rules and options."""
+    return await handle(request)
+
+
+async def handle(request: Request, fix: bool = False) -> Response:
+    """``POST /v1/check``, or ``POST /v1/fix`` with ``fix``: the upload and the options read
+    from the request (the endpoints' parameters only document them), then the job."""
     limits = limits_of(request)
     kind = request.headers.get("content-type", "").split(";")[0].strip().lower()
     if kind == "multipart/form-data":
-        return await _multipart(request)
+        return await _multipart(request, fix)
     if kind in XML_TYPES or kind.endswith("+xml"):
         body = await request.body()
         if len(body) > limits.max_urdf_bytes:
             return error(413, "the URDF is over the size limit")
         values = opts.merge(request.query_params.multi_items())
-        options = opts.parse(values, limits.allow_confirm)
+        options = opts.parse(values, limits.allow_confirm, fix)
         try:
             name = urdf_name(options.filename)
         except ValueError as exc:
@@ -140,8 +151,8 @@ async def check(
     )
 
 
-async def _multipart(request: Request) -> Response:
-    """A ``multipart/form-data`` check: the ``urdf`` part, the ``meshes`` zip, the options."""
+async def _multipart(request: Request, fix: bool) -> Response:
+    """A ``multipart/form-data`` request: the ``urdf`` part, the ``meshes`` zip, the options."""
     limits = limits_of(request)
     try:
         form = await request.form(max_files=2, max_fields=64, max_part_size=FORM_FIELD_BYTES)
@@ -169,7 +180,7 @@ async def _multipart(request: Request) -> Response:
             else:
                 fields.append((key, value))
         values = opts.merge(request.query_params.multi_items(), fields)
-        options = opts.parse(values, limits.allow_confirm)
+        options = opts.parse(values, limits.allow_confirm, fix)
         if urdf is None or (isinstance(urdf, UploadFile) and not urdf.filename and not urdf.size):
             return error(422, "the form has no 'urdf' part (a .urdf or .xacro file)")
         if isinstance(urdf, UploadFile):
@@ -200,6 +211,8 @@ async def _lint(
 ) -> Response:
     """Run one :class:`CheckJob` in a worker, in a temporary folder removed afterwards."""
     limits, pool = limits_of(request), pool_of(request)
+    if options.fix and not _utf8(data):
+        return error(422, NOT_UTF8)
     zip_limits = ZipLimits(limits.max_zip_members, limits.max_unzipped_bytes, limits.max_zip_ratio)
     folder = await run_in_threadpool(tempfile.mkdtemp, "", "urdflint-", limits.tmpdir)
     try:
@@ -220,6 +233,8 @@ async def _lint(
             zip_limits,
             matrix=options.matrix,
             timeout=limits.timeout,
+            fix=options.fix,
+            unsafe_fixes=options.unsafe_fixes,
         )
         try:
             answer = await pool.run(job)
@@ -237,6 +252,14 @@ async def _lint(
     if isinstance(content, (dict, list)):
         return JSONResponse(content, status_code=status)
     return Response(content, status_code=status, media_type=media)
+
+
+def _utf8(data: bytes) -> bool:
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return True
 
 
 def _save(upload: UploadFile, target: str, limit: int) -> int:

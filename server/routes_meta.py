@@ -108,6 +108,7 @@ async def capabilities(request: Request) -> dict[str, Any]:
         ],
         "formats": list(opts.FORMATS),
         "matrix": True,
+        "fix": True,  # POST /v1/fix (unsafe_fixes: the fixes that change the physics too)
         "confirm": confirm_info(limits),
         "limits": limits.public(),
     }

@@ -1,5 +1,7 @@
-// urdflint web page: posts the form to /v1/check and shows the JSON it returns.
-// Every string from the response is inserted as text (textContent), never as HTML.
+// urdflint web page: posts the form to /v1/check (or /v1/fix) and shows the JSON it returns.
+// Every string from the response is inserted as text (textContent), never as HTML; the
+// diff of /v1/fix is split into lines shown as text, and the fixed file is offered as a
+// Blob URL download (no markup is ever built from it).
 // The tree SVG is parsed as XML and rebuilt from an allowlist of elements and
 // attributes (see cleanSvg), so even a broken server could not inject script.
 "use strict";
@@ -36,6 +38,7 @@
   const form = $("check-form");
   // what the server offers (GET /v1/capabilities): confirm, the engines, target -> engine
   const offer = { confirm: false, installed: [], engineOf: {} };
+  let download = null; // the Blob URL of the fixed file, revoked when replaced
 
   function el(tag, attrs, ...children) {
     const node = document.createElement(tag);
@@ -66,17 +69,20 @@
   }
 
   function buildRequest() {
+    // the form's fields, and the upload's file name (the fixed file is saved under it)
     const data = new FormData();
+    let name;
     if (mode() === "file") {
       const file = $("urdf-file").files[0];
       if (!file) throw new Error("Choose a URDF or xacro file first.");
+      name = file.name;
       data.append("urdf", file, file.name);
       const meshes = $("meshes-file").files[0];
       if (meshes) data.append("meshes", meshes, meshes.name);
     } else {
       const text = $("urdf-text").value;
       if (!text.trim()) throw new Error("Paste the URDF or xacro XML first.");
-      const name = /xmlns:xacro\s*=/.test(text) ? "pasted.urdf.xacro" : "pasted.urdf";
+      name = /xmlns:xacro\s*=/.test(text) ? "pasted.urdf.xacro" : "pasted.urdf";
       data.append("urdf", new Blob([text], { type: "application/xml" }), name);
     }
     for (const id of ["target", "fail-on", "select", "ignore", "expect-mass", "expect-com", "xacro-args"]) {
@@ -90,7 +96,7 @@
     if (engines.length && $("want-confirm").checked && !$("confirm-field").hidden) {
       data.append("confirm", engines.join(","));
     }
-    return data;
+    return { data, name };
   }
 
   function confirmEngines() {
@@ -121,24 +127,32 @@
     showConfirm();
   }
 
-  async function submit(event) {
+  function submit(event) {
     event.preventDefault();
+    send(false);
+  }
+
+  async function send(fixing) {
+    // POST the form to /v1/check, or to /v1/fix when fixing, and show the answer
     hideError();
-    let body;
+    let body, name;
     try {
-      body = buildRequest();
+      ({ data: body, name } = buildRequest());
     } catch (problem) {
       showError(problem.message);
       return;
     }
-    const button = $("submit");
-    button.disabled = true;
+    const unsafe = fixing && $("want-unsafe").checked;
+    if (unsafe) body.append("unsafe_fixes", "true");
+    const buttons = [$("submit"), $("fix")];
+    buttons.forEach((button) => { button.disabled = true; });
     form.setAttribute("aria-busy", "true");
     const confirming = body.has("confirm");
     const asked = { matrix: body.has("matrix") };
-    $("status").textContent = confirming ? "Checking… (the engines load the model too)" : "Checking…";
+    const doing = fixing ? "Fixing…" : "Checking…";
+    $("status").textContent = confirming ? `${doing} (the engines load the model too)` : doing;
     try {
-      const response = await fetch("/v1/check", {
+      const response = await fetch(fixing ? "/v1/fix" : "/v1/check", {
         method: "POST",
         body: body,
         headers: { Accept: "application/json" },
@@ -163,14 +177,15 @@
         return;
       }
       render(payload, asked);
+      renderFix(fixing ? payload : null, name, unsafe);
       $("status").textContent = "Done.";
       $("results").scrollIntoView({ behavior: "smooth", block: "start" });
     } catch (problem) {
       showError("Could not reach the urdflint server.", String(problem && problem.message || problem));
     } finally {
-      button.disabled = false;
+      buttons.forEach((button) => { button.disabled = false; });
       form.removeAttribute("aria-busy");
-      if ($("status").textContent.startsWith("Checking…")) $("status").textContent = "";
+      if ($("status").textContent.startsWith(doing)) $("status").textContent = "";
     }
   }
 
@@ -181,6 +196,7 @@
     box.dataset.status = status ? String(status) : "";
     box.hidden = false;
     $("results").hidden = true;
+    renderFix(null);
   }
 
   function hideError() {
@@ -204,7 +220,7 @@
         `${n} ${n === 1 ? sev : PLURAL[sev]}`);
     }));
     renderModels(doc.models || {});
-    const anchors = renderFindings(doc.findings);
+    const anchors = renderFindings(doc.findings, paths[0]);
     renderMatrix(Array.isArray(doc.matrix) ? doc.matrix : [], !!(asked && asked.matrix), anchors);
     renderTrees(doc.svg || {});
     $("results").hidden = false;
@@ -246,7 +262,7 @@
     }
   }
 
-  function renderFindings(findings) {
+  function renderFindings(findings, upload) {
     const table = $("findings");
     table.querySelectorAll("tbody").forEach((body) => body.remove());
     $("no-findings").hidden = findings.length > 0;
@@ -265,6 +281,13 @@
         const code = el("td", { class: "code" },
           el("a", { href: `/rules/${encodeURIComponent(f.code)}`, target: "_blank", rel: "noopener" }, f.code),
           el("span", { class: "rule-name" }, f.name));
+        const kind = fixable(f, upload);
+        if (kind) {
+          code.append(el("span", {
+            class: "badge fixable", "data-applicability": kind,
+            title: typeof f.autofix.description === "string" ? f.autofix.description : null,
+          }, kind === "unsafe" ? "fixable, unsafe" : "fixable"));
+        }
         const problem = el("td", { class: "problem" }, el("p", { class: "message" }, f.message));
         if (f.fix) problem.append(el("p", { class: "fix" }, f.fix));
         const line = many ? `${f.path}:${f.line}` : f.line;
@@ -281,6 +304,72 @@
       table.append(body);
     }
     return anchors;
+  }
+
+  function fixable(f, upload) {
+    // "safe" or "unsafe" when Fix can apply the finding's fix (every edit in the upload)
+    const fix = f.autofix;
+    if (!fix || typeof fix !== "object" || fix.unavailable) return null;
+    const edits = Array.isArray(fix.edits) ? fix.edits : [];
+    if (!edits.length || !edits.every((e) => e && e.path === upload)) return null;
+    return fix.applicability === "unsafe" ? "unsafe" : "safe";
+  }
+
+  // -- the fixes (POST /v1/fix) -------------------------------------------------------------
+
+  function renderFix(doc, name, unsafe) {
+    // the diff, the download and what is left; a check (doc null) hides the card
+    const card = $("fix-card");
+    const link = $("download");
+    if (download) URL.revokeObjectURL(download);
+    download = null;
+    link.hidden = true;
+    link.setAttribute("href", "#");
+    if (!doc) {
+      card.hidden = true;
+      return;
+    }
+    const applied = Number.isInteger(doc.applied) ? doc.applied : 0;
+    const diff = typeof doc.diff === "string" ? doc.diff : "";
+    const upload = Object.keys(doc.models || {})[0];
+    const waiting = unsafe ? 0 : doc.findings.filter((f) => fixable(f, upload) === "unsafe").length;
+    let text = diff
+      ? `Applied ${applied} fix${applied === 1 ? "" : "es"}; the findings below are what is left.`
+      : "No automatic fix applies to this file.";
+    if (waiting) {
+      text += ` ${waiting} more with “include unsafe fixes (physics)”.`;
+    }
+    $("fix-summary").textContent = text;
+    renderDiff(diff);
+    $("diff").closest(".diff-wrap").hidden = !diff;
+    if (diff && typeof doc.fixed === "string") {
+      download = URL.createObjectURL(new Blob([doc.fixed], { type: "application/xml" }));
+      link.href = download;
+      link.download = name || "fixed.urdf";
+      link.hidden = false;
+    }
+    card.hidden = false;
+  }
+
+  function renderDiff(diff) {
+    // one text span (a block) per line, classed: file header, hunk, added, removed, context
+    const box = $("diff");
+    box.replaceChildren();
+    const lines = diff.split("\n");
+    if (lines[lines.length - 1] === "") lines.pop();
+    let inHunk = false;
+    for (const raw of lines) {
+      const line = raw.replace(/\r$/, "");
+      let kind = "context";
+      if (line.startsWith("@@")) {
+        kind = "hunk";
+        inHunk = true;
+      } else if (!inHunk) kind = "file";
+      else if (line.startsWith("+")) kind = "add";
+      else if (line.startsWith("-")) kind = "del";
+      else if (line.startsWith("\\")) kind = "note";
+      box.append(el("span", { class: `line ${kind}`, "data-kind": kind }, line));
+    }
   }
 
   function anchorKey(f, exact) {
@@ -444,6 +533,7 @@
   // -- start --------------------------------------------------------------------------------
 
   form.addEventListener("submit", submit);
+  $("fix").addEventListener("click", () => send(true));
   $("target").addEventListener("change", () => { if (offer.confirm) showConfirm(); });
   $("matrix").addEventListener("click", goToFinding);
   form.querySelectorAll("input[name=mode]").forEach((radio) => radio.addEventListener("change", showMode));

@@ -692,3 +692,149 @@ def test_confirm_in_the_installed_engines(driver: Any, tmp_path: Path) -> None:
         assert shown[0]["engine"].startswith("pinocchio")
         codes = {r["code"] for r in rows(driver)}
         assert "E001" in codes  # what Pinocchio said, in the findings
+
+
+# -- Fix: the diff and the download ---------------------------------------------------------------
+
+# a non-unit axis (safe fix) and inverted limits (unsafe fix), with markup in a comment that
+# the diff shows as context: it must stay text
+FIXABLE = f"""<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base_link"/>
+  <joint name="shoulder" type="revolute">
+    <!-- {HOSTILE.replace("--", "")} -->
+    <parent link="base_link"/>
+    <child link="upper_arm"/>
+    <axis xyz="0 0 2"/>
+    <limit lower="1.57" upper="-1.57" effort="30" velocity="2"/>
+  </joint>
+  <link name="upper_arm">
+    <inertial>
+      <mass value="1.0"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
+    </inertial>
+  </link>
+</robot>
+"""
+
+
+def press_fix(driver: Any, unsafe: bool = False) -> None:
+    box = driver.find_element(By.ID, "want-unsafe")
+    if box.is_selected() != unsafe:
+        box.click()
+    driver.find_element(By.ID, "fix").click()
+    WebDriverWait(driver, 90).until(
+        lambda d: (
+            d.find_element(By.ID, "fix-card").is_displayed()
+            or d.find_element(By.ID, "error").is_displayed()
+        )
+    )
+    assert driver.find_element(By.ID, "fix-card").is_displayed(), driver.find_element(
+        By.ID, "error"
+    ).text
+
+
+def diff_lines(driver: Any) -> list[tuple[str, str]]:
+    script = """
+      return Array.from(document.querySelectorAll('#diff span.line'),
+        (s) => [s.dataset.kind, s.textContent]);
+    """
+    return [(kind, text) for kind, text in driver.execute_script(script)]
+
+
+def test_fix_shows_the_diff_and_downloads_the_fixed_file(
+    driver: Any, base_url: str, tmp_path: Path
+) -> None:
+    httpx = pytest.importorskip("httpx")
+    path = tmp_path / "my_arm.urdf"
+    path.write_text(FIXABLE)
+    downloads = tmp_path / "downloads"
+    downloads.mkdir()
+    driver.execute_cdp_cmd(
+        "Browser.setDownloadBehavior", {"behavior": "allow", "downloadPath": str(downloads)}
+    )
+    driver.get_log("browser")  # start with an empty console
+
+    # Check first: the findings with a fix say so; no fix card
+    assert check(driver, base_url, path) == "results"
+    badges = {
+        r["code"]: r
+        for r in driver.execute_script("""
+      return Array.from(document.querySelectorAll('#findings tr.finding'), (tr) => {
+        const badge = tr.querySelector('.badge.fixable');
+        return {code: tr.dataset.code, badge: badge && badge.textContent,
+                kind: badge && badge.dataset.applicability};
+      });""")
+    }
+    assert badges["J008"]["badge"] == "fixable" and badges["J008"]["kind"] == "safe"
+    assert badges["J009"]["badge"] == "fixable, unsafe"
+    assert not driver.find_element(By.ID, "fix-card").is_displayed()
+
+    # Fix: the safe fix; the diff is coloured by line, the unsafe one waits
+    press_fix(driver)
+    lines = diff_lines(driver)
+    assert ("file", "--- my_arm.urdf") in lines and lines[2][0] == "hunk"
+    assert [(k, t) for k, t in lines if k in ("add", "del")] == [
+        ("del", '-    <axis xyz="0 0 2"/>'),
+        ("add", '+    <axis xyz="0 0 1"/>'),
+    ]
+    colours = driver.execute_script("""
+      const of = (kind) =>
+        getComputedStyle(document.querySelector(`#diff .${kind}`)).backgroundColor;
+      return [of('add'), of('del'), of('context')];""")
+    assert len(set(colours)) == 3
+    summary = driver.find_element(By.ID, "fix-summary").text
+    assert "Applied 1 fix" in summary and "1 more with" in summary
+    assert {r["code"] for r in rows(driver)} >= {"J009"} and "J008" not in {
+        r["code"] for r in rows(driver)
+    }
+    assert driver.execute_script("return window.pwned === undefined")
+    assert not driver.find_elements(By.CSS_SELECTOR, "#diff img, #diff script, #diff *:not(span)")
+    assert any(HOSTILE.replace("--", "") in text for _, text in lines)  # shown as text
+
+    # with the unsafe fixes, the limits too; the download is the fixed file, by its name
+    press_fix(driver, unsafe=True)
+    WebDriverWait(driver, 30).until(lambda d: sum(kind == "add" for kind, _ in diff_lines(d)) == 2)
+    link = driver.find_element(By.ID, "download")
+    assert link.is_displayed() and link.text == "Download fixed file"
+    assert link.get_attribute("download") == "my_arm.urdf"
+    assert link.get_attribute("href").startswith(f"blob:{base_url}/")
+    link.click()
+    target = downloads / "my_arm.urdf"
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline and not target.is_file():
+        time.sleep(0.1)
+    assert target.is_file(), sorted(p.name for p in downloads.iterdir())
+    with path.open("rb") as handle:
+        api = httpx.post(
+            f"{base_url}/v1/fix",
+            files={"urdf": ("my_arm.urdf", handle, "application/xml")},
+            data={"unsafe_fixes": "true"},
+            timeout=120,
+        ).json()
+    assert target.read_text() == api["fixed"]
+    assert 'lower="-1.57" upper="1.57"' in api["fixed"]
+    assert not [
+        entry["message"]
+        for entry in driver.get_log("browser")
+        if "Content Security Policy" in entry["message"] or "Refused" in entry["message"]
+    ]
+
+    screenshot(driver, tmp_path / "fixed.png")
+
+    # Check again: the fix card goes away (its Blob URL is revoked)
+    driver.find_element(By.ID, "submit").click()
+    WebDriverWait(driver, 60).until(lambda d: not d.find_element(By.ID, "fix-card").is_displayed())
+
+
+def test_fix_with_nothing_to_fix_offers_no_download(driver: Any, base_url: str) -> None:
+    driver.get(f"{base_url}/")
+    driver.find_element(By.XPATH, "//input[@name='mode'][@value='paste']/parent::label").click()
+    driver.execute_script(
+        "document.getElementById('urdf-text').value = arguments[0]",
+        '<robot name="r">\n  <link name="a"/>\n</robot>\n',
+    )
+    press_fix(driver)
+    assert "No automatic fix" in driver.find_element(By.ID, "fix-summary").text
+    assert not driver.find_element(By.ID, "download").is_displayed()
+    assert diff_lines(driver) == []
