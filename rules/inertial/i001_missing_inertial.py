@@ -59,13 +59,29 @@ tensor (CAD tools export them). A link that is only a frame should hang from a
 `fixed` joint. For the root link, KDL wants no inertia: keep a massless root
 (for example `base_footprint`) and fix the real base link, with its mass, to
 it.
+
+`urdflint fix --unsafe-fixes` inserts, as the first child of a link that hangs
+from a moving joint, an `<inertial>` computed from its collision geometry as a
+solid of uniform density (in a kinematics-only model, one in each such link).
+The density is the `density` option, 1000 kg/m³ by default (MuJoCo's, water's),
+or `--density` on the command line; the fix says the mass it gives. Links
+without usable collision geometry (none, or a mesh that cannot be read) get no
+fix. The mass is a guess from the density: check it.
+
+```toml
+[rules.I001]
+density = 2700  # aluminium
+```
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
+from typing import Any
 
 from urdflint.rules import consequences as K
+from urdflint.rules.inertial import refit
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import massless
@@ -78,9 +94,19 @@ from urdflint.model.bodies import (
     selected,
 )
 from urdflint.model.document import Document
+from urdflint.model.edits import InsertChild, Operation, Repair
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 from urdflint.model.targets import gazebo_label
+from urdflint.model.values import fmt
+from urdflint.sources.inertia_from_geometry import (
+    NOISE,
+    NOISE_METRES,
+    Estimate,
+    geometry_inertial,
+    inertial_xml,
+    number_text,
+)
 
 SHOWN = 3
 
@@ -91,8 +117,11 @@ SHOWN = 3
     Severity.ERROR,
     fix="Add an <inertial> with the link's real mass, centre of mass and inertia.",
     effects=single(K.MISSING_INERTIAL),
+    options={"density": 1000.0},
+    fixable="unsafe",
 )
-def check(doc: Document) -> Iterator[Hit]:
+def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
+    density = float(opts["density"])
     found: dict[str, Verdict] = {}
     for name, link in doc.link_map.items():
         if link.inertial is not None or not doc.graph.parent_joints.get(name):
@@ -101,7 +130,7 @@ def check(doc: Document) -> Iterator[Hit]:
         if verdict is not None:
             found[name] = verdict
     if len(found) > 1 and all(link.inertial is None for link in doc.links):
-        yield _kinematics_only(doc, found)
+        yield _kinematics_only(doc, found, density)
         return
     for name, verdict in found.items():
         yield Hit(
@@ -109,10 +138,11 @@ def check(doc: Document) -> Iterator[Hit]:
             f"link '{name}' has no <inertial>, so {verdict.consequence}",
             severity=verdict.severity,
             effects=massless.effects(doc, name, declared=False),
+            repair=_repair(doc, [name], density),
         )
 
 
-def _kinematics_only(doc: Document, found: dict[str, Verdict]) -> Hit:
+def _kinematics_only(doc: Document, found: dict[str, Verdict], density: float) -> Hit:
     """One finding for a model where no link has an ``<inertial>``."""
     moving = [n for n in found if (j := doc.graph.parent_joint(n)) and j.type in MOVABLE]
     first = (moving or list(found))[0]
@@ -137,7 +167,54 @@ def _kinematics_only(doc: Document, found: dict[str, Verdict]) -> Hit:
         severity=max(v.severity for v in found.values()),
         fix="Add an <inertial> to every link that moves, or use the model only where "
         "dynamics do not matter (RViz, kinematics).",
+        repair=_repair(doc, list(found), density),
     )
+
+
+def _repair(doc: Document, names: list[str], density: float) -> Repair | None:
+    """``<inertial>`` elements computed from the collision geometry of the moving links among
+    ``names`` at ``density`` kg/m³ (none for a link without usable collision geometry)."""
+    if not (density > 0 and math.isfinite(density)):
+        return None
+    operations: list[Operation] = []
+    made: dict[str, Estimate] = {}
+    left: list[str] = []
+    for name in names:
+        joint = doc.graph.parent_joint(name)
+        if joint is None or joint.type not in MOVABLE:
+            continue
+        estimate = geometry_inertial(doc, name, density=density)
+        if estimate is None:
+            left.append(name)
+            continue
+        made[name] = estimate
+        xml = inertial_xml(estimate, "  ", "\n")
+        operations.append(InsertChild(doc.link_map[name].element, xml))
+    if not made:
+        return None
+    at = f"at {fmt(density)} kg/m³"
+    if len(made) == 1:
+        ((name, e),) = made.items()
+        text = f"insert an <inertial> computed from {refit.source(e)} {at}: {_mass(e)}"
+    else:
+        each = [f"'{n}' {fmt(e.mass)} kg ({e.method})" for n, e in made.items()]
+        if len(each) > SHOWN:
+            each = [*each[:SHOWN], f"{len(each) - SHOWN} more"]
+        total = fmt(sum(e.mass for e in made.values()))
+        text = (
+            f"insert <inertial> elements computed from the collision geometry {at} in "
+            f"{len(made)} links, {total} kg in all: {', '.join(each)}"
+        )
+    if left:
+        text += f" ({_links(left)} without usable collision geometry left as they are)"
+    return Repair("unsafe", text, tuple(operations))
+
+
+def _mass(estimate: Estimate) -> str:
+    """``3 kg, centre of mass 0 0 0.15`` (rounding noise shown as 0, as it is written)."""
+    floor = max(NOISE_METRES, NOISE * max(abs(v) for v in estimate.com))
+    com = " ".join(number_text(0.0 if abs(v) <= floor else v) for v in estimate.com)
+    return f"{fmt(estimate.mass)} kg, centre of mass {com}"
 
 
 def _links(names: list[str]) -> str:

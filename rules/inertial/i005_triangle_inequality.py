@@ -27,9 +27,16 @@ setting inertia to zero for link"). Pinocchio 4.1 loads it as written.
 
 ## How to fix
 Recompute the tensor from the geometry and the mass (CAD, Drake's
-`fix_inertia`), or balance it (MuJoCo's `balanceinertia` sets each violating
-moment to the mean). A slightly violated thin plate usually only needs more
-digits in the values.
+`fix_inertia`), or balance it (MuJoCo's `balanceinertia` sets all three
+principal moments to their mean). A slightly violated thin plate usually only
+needs more digits in the values.
+
+`urdflint fix --unsafe-fixes` writes the tensor of the link's collision
+geometry at the declared mass (about its centroid in the link's axes, so the
+origin's `rpy` becomes `0 0 0`; the declared centre of mass is kept). A link
+without usable collision geometry gets MuJoCo's balance instead: the three
+principal moments set to their average, which keeps their sum and loses the
+axes.
 """
 
 from __future__ import annotations
@@ -38,14 +45,17 @@ from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
 from urdflint.rules import lumping as L
+from urdflint.rules.inertial import refit
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import principal_moments, tolerance
+from urdflint.model.inertia import Inertial, principal_moments, tolerance
 from urdflint.model.values import fmt
+from urdflint.sources.inertia_from_geometry import balance
 
 
 @rule(
@@ -54,6 +64,7 @@ from urdflint.model.values import fmt
     Severity.ERROR,
     fix="Recompute the tensor from the geometry and mass, or balance the moments.",
     effects=single(K.BAD_TENSOR),
+    fixable="unsafe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     for name, inertial in bodies(doc).inertials.items():
@@ -70,4 +81,24 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"and {fmt(a)} + {fmt(b)} < {fmt(c)}" + welded_note(doc, name, severity),
                 severity=severity,
                 effects=L.impossible(doc, name, K.BAD_TENSOR),
+                repair=_repair(doc, name, inertial),
             )
+
+
+def _repair(doc: Document, name: str, inertial: Inertial) -> Repair | None:
+    """The collision geometry's tensor at the declared mass, else MuJoCo's balance."""
+    el, tensor = inertial.inertia_element, inertial.matrix
+    estimate = refit.estimate_at_mass(doc, name, inertial)
+    if estimate is not None:
+        text, operations = refit.refit(inertial, estimate, "only the moments are impossible")
+    elif el is not None and tensor is not None:
+        balanced = balance(tensor)
+        operations = refit.set_tensor(el, balanced)
+        text = (
+            "MuJoCo's balanceinertia: the three principal moments set to their average, "
+            f"{fmt(balanced[0][0])} kg·m² (no usable collision geometry to compute the tensor "
+            "from)"
+        )
+    else:
+        return None
+    return Repair("unsafe", text, tuple(operations)) if operations else None

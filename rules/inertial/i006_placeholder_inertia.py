@@ -26,6 +26,11 @@ tensor pasted from another link is wrong by at least the mass ratio.
 ## How to fix
 Compute each link's tensor from its geometry and mass (CAD, or the formula of
 a matching primitive, or Drake's `fix_inertia`).
+
+`urdflint fix --unsafe-fixes` writes the tensor of the link's collision
+geometry at the declared mass (about its centroid in the link's axes, so the
+origin's `rpy` becomes `0 0 0`; the declared centre of mass is kept). Links
+without usable collision geometry get no fix.
 """
 
 from __future__ import annotations
@@ -34,9 +39,12 @@ import math
 import statistics
 from collections.abc import Iterator
 
+from urdflint.rules.inertial import refit
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import Bodies, bodies
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import PLACEHOLDER, primitive_box, times
 from urdflint.model.values import fmt
@@ -50,6 +58,7 @@ MASS_RATIO = 10.0
     "placeholder-inertia",
     Severity.WARNING,
     fix="Compute the tensor from the link's geometry and mass.",
+    fixable="unsafe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     b = bodies(doc)
@@ -67,6 +76,7 @@ def check(doc: Document) -> Iterator[Hit]:
                     f"link '{name}' has the placeholder inertia ixx = iyy = izz = 1 kg·m², "
                     f"which at {fmt(inertial.mass)} kg needs mass at least {needed} m "
                     f"from the centre of mass, but the link reaches {spans} m",
+                    repair=_repair(doc, name, "only the tensor is a placeholder"),
                 )
                 continue
         if any(inertial.tensor) and not b.negligible(name):
@@ -96,7 +106,18 @@ def _copies(b: Bodies, members: list[tuple[str, float]]) -> Iterator[Hit]:
                 f"link '{name}' ({fmt(mass)} kg) has the same inertia tensor as link '{other}' "
                 f"({fmt(other_mass)} kg), whose mass is {times(ratio)}× "
                 f"{'smaller' if other_mass < mass else 'larger'}",
+                repair=_repair(b.doc, name, "only the tensor is a copy"),
             )
+
+
+def _repair(doc: Document, name: str, kept: str) -> Repair | None:
+    """The tensor of the link's collision geometry at its declared mass (none without one)."""
+    inertial = bodies(doc).inertials[name]
+    estimate = refit.estimate_at_mass(doc, name, inertial) if inertial is not None else None
+    if inertial is None or estimate is None:
+        return None
+    text, operations = refit.refit(inertial, estimate, kept)
+    return Repair("unsafe", text, tuple(operations)) if operations else None
 
 
 def _size(doc: Document, name: str, com: tuple[float, ...] | None) -> float:

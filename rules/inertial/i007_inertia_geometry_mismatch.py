@@ -41,6 +41,11 @@ raise `max-ratio` for this rule:
 [rules.I007]
 max-ratio = 20
 ```
+
+`urdflint fix --unsafe-fixes` writes the tensor of the collision shape at the
+declared mass (about its centroid in the link's axes, so the origin's `rpy`
+becomes `0 0 0`). The declared centre of mass is kept, since the rule compares
+only the moments. Use it when the shape is a fair stand-in for the part.
 """
 
 from __future__ import annotations
@@ -49,9 +54,12 @@ import math
 from collections.abc import Iterator
 from typing import Any
 
+from urdflint.rules.inertial import refit
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair
 from urdflint.model.finding import Severity
 from urdflint.model.geometry import shapes
 from urdflint.model.inertia import (
@@ -73,6 +81,7 @@ MAX_DENSITY = 1e5  # kg/m^3, five times osmium's
     Severity.WARNING,
     fix="Check the units (kg, kg·m²) and recompute the tensor from the geometry.",
     options={"max-ratio": 10.0},
+    fixable="unsafe",
 )
 def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
     limit = float(opts["max-ratio"])
@@ -116,7 +125,17 @@ def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
                 f"link '{name}' has {times(factor)}× {way} inertia than {what} "
                 f"of {fmt(inertial.mass)} kg (moments summing to {fmt(sum(declared))} instead of "
                 f"{fmt(expected_sum)} kg·m²{note})",
+                repair=_repair(doc, name, inertial),
             )
+
+
+def _repair(doc: Document, name: str, inertial: Any) -> Repair | None:
+    """The tensor of the collision shape at the declared mass (none without a usable one)."""
+    estimate = refit.estimate_at_mass(doc, name, inertial)
+    if estimate is None:
+        return None
+    text, operations = refit.refit(inertial, estimate, "I007 compares only the moments")
+    return Repair("unsafe", text, tuple(operations)) if operations else None
 
 
 def _mesh_solid(doc: Document, shape: Any, mass: float) -> tuple[float, float, str, str] | None:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import difflib
+import math
 import sys
 from collections.abc import Callable
 from typing import Any
@@ -32,10 +33,28 @@ def add_options(parser: argparse.ArgumentParser) -> None:
         help="also apply fixes that change the model's physics (inertias, limits)",
     )
     parser.add_argument(
+        "--density",
+        type=density,
+        metavar="KG_PER_M3",
+        help="density of the <inertial> that the unsafe fix of I001 computes from a link's "
+        "collision geometry (default 1000, MuJoCo's; rules.I001.density in the configuration)",
+    )
+    parser.add_argument(
         "--diff",
         action="store_true",
         help="print the fixes as a unified diff and change nothing (exit 1 if there is one)",
     )
+
+
+def density(text: str) -> float:
+    """``--density``: a positive number of kg/m³."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (value > 0 and math.isfinite(value)):
+        raise argparse.ArgumentTypeError(f"expected a positive density in kg/m³, got {text!r}")
+    return value
 
 
 def rounds(args: argparse.Namespace, lint: Callable[[], Any]) -> tuple[Any, dict[str, bytes], int]:

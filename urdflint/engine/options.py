@@ -105,6 +105,8 @@ def overrides(args: argparse.Namespace) -> dict[str, object]:
     confirm = [e for group in getattr(args, "confirm", None) or () for e in group]
     if confirm:
         found["confirm"] = tuple(dict.fromkeys(confirm))
+    if getattr(args, "density", None) is not None:  # --density: I001's unsafe fix
+        found["rule_options"] = {"I001": {"density": args.density}}
     return found
 
 
@@ -112,7 +114,7 @@ class SettingsFinder:
     """Effective settings per file: discovered (or given) config plus CLI overrides."""
 
     def __init__(self, args: argparse.Namespace) -> None:
-        self.overrides = overrides(args) if args.command == "check" else {}
+        self.overrides = overrides(args) if args.command in ("check", "fix") else {}
         if args.command == "info" and args.xacro_arg:
             self.overrides["xacro_args"] = dict(args.xacro_arg)
         self.expect_mass = getattr(args, "expect_mass", None)
@@ -137,6 +139,12 @@ class SettingsFinder:
         extra: dict[str, Any] = dict(self.overrides)
         if "ignore" in extra:
             extra["ignore"] = settings.ignore + tuple(extra["ignore"])
+        if "rule_options" in extra:  # the command line's options win, the others stay
+            given = extra["rule_options"]
+            codes = {*settings.rule_options, *given}
+            extra["rule_options"] = {
+                c: {**settings.rule_options.get(c, {}), **given.get(c, {})} for c in codes
+            }
         if "xacro_args" in extra:
             given = extra["xacro_args"]
             extra["xacro_args"] = {**settings.xacro_args, **given}
