@@ -38,17 +38,29 @@ what the file says.
 Rename or move the element as the message suggests. If it is data for a
 specific tool, put it in that tool's block (`<gazebo reference="...">` for
 Gazebo) or in a namespace of its own (`xmlns:mytool="..."`); otherwise delete it.
+
+`urdflint fix` renames a misspelt element when one URDF name is certainly meant: it is the
+suggested one, the only closest name at most one edit away (two for names of 8+ letters,
+ignoring case and `_`), with the same digits, and the parent has no such element yet
+(except `<visual>` and `<collision>`, which a link may have several of): `<colision>`
+becomes `<collision>`, `<colour>` `<color>`. Elements to move or delete, and misspelt
+top-level elements (a `<lnk>` would add a link to the tree), are left to you.
 """
 
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterator
 
+from lxml import etree
+
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.document import Document
+from urdflint.model.document import Document, children
+from urdflint.model.edits import RenameElement, Repair
 from urdflint.model.finding import Severity
 from urdflint.model.schema import SPECS, describe, homes, walk
+from urdflint.model.spelling import distance, near_miss
 
 # Well-known mistakes that deserve a specific hint: (context, tag) -> hint.
 HINTS = {
@@ -63,6 +75,7 @@ HINTS = {
     "unknown-element",
     Severity.WARNING,
     fix="Rename or move the element as suggested, or delete it: every URDF parser ignores it.",
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     for visit in walk(doc.robot):
@@ -72,20 +85,54 @@ def check(doc: Document) -> Iterator[Hit]:
         if visit.parent_key == "geometry" and not homes(el.tag):
             continue  # an unknown shape is C003 invalid-geometry's (an error there)
         where = describe(el.getparent())
-        hint = _hint(el.tag, visit.parent_key)
+        hint, suggested = _hint(el.tag, visit.parent_key)
         suffix = f" ({hint})" if hint else ""
-        yield Hit(el, f"<{el.tag}> is not a URDF element of {where}{suffix}")
+        yield Hit(
+            el,
+            f"<{el.tag}> is not a URDF element of {where}{suffix}",
+            repair=_rename(el, visit.parent_key, suggested),
+        )
 
 
-def _hint(tag: str, context: str) -> str | None:
+def _hint(tag: str, context: str) -> tuple[str | None, str | None]:
+    """The hint for the message, and the name it suggests (a did-you-mean)."""
     if (context, tag) in HINTS:
-        return HINTS[(context, tag)]
+        return HINTS[(context, tag)], None
     places = [p for p in homes(tag) if p != context]
     if places:
         if places == ["robot"]:
-            return "it belongs at the top level, directly inside <robot>"
+            return "it belongs at the top level, directly inside <robot>", None
         names = [f"<{p}>" for p in places]
         listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
-        return f"it belongs inside {listed}"
+        return f"it belongs inside {listed}", None
     close = difflib.get_close_matches(tag, list(SPECS[context].children), n=1, cutoff=0.75)
-    return f"did you mean <{close[0]}>?" if close else None
+    return (f"did you mean <{close[0]}>?", close[0]) if close else (None, None)
+
+
+MANY = frozenset({"visual", "collision"})  # the children URDF reads more than one of
+
+
+def _rename(el: etree._Element, context: str, suggested: str | None) -> Repair | None:
+    """Rename a misspelt element to the suggested name when nothing else is as close."""
+    if suggested is None or context == "robot":
+        return None  # a whole link or joint appearing is not a spelling fix: left to you
+    tag = str(el.tag)
+    ranked = sorted(
+        (distance(_fold(tag), _fold(c)), distance(tag, c), c)
+        for c in SPECS[context].children
+        if near_miss(tag, [c]) is not None
+    )
+    if not ranked or ranked[0][2] != suggested:
+        return None
+    if len(ranked) > 1 and ranked[0][:2] == ranked[1][:2]:
+        return None  # two names as close: not certain
+    if re.findall(r"\d", tag) != re.findall(r"\d", suggested):
+        return None
+    parent = el.getparent()
+    if suggested not in MANY and parent is not None and children(parent, suggested):
+        return None  # URDF reads only the first one: the two would compete
+    return Repair("safe", f"rename <{tag}> to <{suggested}>", (RenameElement(el, suggested),))
+
+
+def _fold(name: str) -> str:
+    return name.lower().replace("_", "").replace("-", "")

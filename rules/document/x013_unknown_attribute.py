@@ -35,19 +35,30 @@ Rename the attribute as suggested, move it where it belongs (`<mass value="1"/>`
 inside `<inertial>`; an axis rotation into the joint's `<origin rpy>` or the axis
 vector itself), or delete it. Data for a specific tool goes in that tool's
 namespace (`xmlns:mytool="..."`, then `mytool:attr="..."`), which no URDF rule reads.
+
+`urdflint fix` handles a misspelt attribute when one URDF name is certainly meant (the
+suggested one, the only closest name at most one edit away, two for names of 8+ letters,
+ignoring case and `_`, with the same digits): it deletes the misspelt attribute when the
+element also carries the right one with the same value (`typ="revolute"
+type="revolute"`), and, in a plain URDF file, renames it when the right one is missing
+(written at the end of the tag). Different values, and xacro sources (the value may be an
+expression), are left to you.
 """
 
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterator
 
 from lxml import etree
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.edits import RemoveAttribute, Repair, SetAttribute
 from urdflint.model.finding import Severity
 from urdflint.model.schema import EXTENSION_ATTRS, SPECS, describe, walk
+from urdflint.model.spelling import distance, near_miss
 from urdflint.model.values import vector
 
 # Attributes written in the wrong place often enough to deserve a specific hint.
@@ -61,6 +72,7 @@ HINTS = {
     "unknown-attribute",
     Severity.WARNING,
     fix="Rename the attribute as suggested, move it where it belongs, or delete it.",
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     elements = [(doc.robot, "robot")]
@@ -73,11 +85,13 @@ def check(doc: Document) -> Iterator[Hit]:
                 continue  # namespaced (xacro:, drake:, xsi:), URDF's own, or a known extension
             if (key, attr) == ("axis", "rpy") and vector(el, "rpy", 3) == (0.0, 0.0, 0.0):
                 continue  # the identity: nothing is lost
+            hint, suggested = _hint(key, attr)
             yield Hit(
                 el,
                 f"{_what(el, key)} has the attribute {attr}={value!r}, which URDF does not "
-                f"define there{_hint(key, attr)}",
+                f"define there{hint}",
                 attribute=attr,
+                repair=_repair(doc, el, key, attr, suggested),
             )
 
 
@@ -85,14 +99,53 @@ def _what(el: etree._Element, key: str) -> str:
     return "<robot>" if key == "robot" else describe(el)
 
 
-def _hint(key: str, attr: str) -> str:
+def _hint(key: str, attr: str) -> tuple[str, str | None]:
+    """The hint for the message, and the attribute it suggests (a did-you-mean)."""
     if (key, attr) in HINTS:
-        return f" ({HINTS[key, attr]})"
+        return f" ({HINTS[key, attr]})", None
     spec = SPECS[key]
     if attr in spec.children:
-        return f" (<{attr}> is a child element of <{key}>, not an attribute)"
+        return f" (<{attr}> is a child element of <{key}>, not an attribute)", None
     known = [*spec.attrs, *EXTENSION_ATTRS.get(key, {})]
     close = difflib.get_close_matches(attr, known, n=1, cutoff=0.7)
     if not close and attr.lower() in known:
         close = [attr.lower()]
-    return f" (did you mean {close[0]}?)" if close else ""
+    return (f" (did you mean {close[0]}?)", close[0]) if close else ("", None)
+
+
+def _repair(
+    doc: Document, el: etree._Element, key: str, attr: str, suggested: str | None
+) -> Repair | None:
+    """Delete a misspelt duplicate, or rename a misspelt attribute (plain URDF only: in a
+    xacro source the value may be an expression, which the expanded value would replace)."""
+    known = [*SPECS[key].attrs, *EXTENSION_ATTRS.get(key, {})]
+    if suggested is None or not _certain(attr, suggested, known):
+        return None
+    right = el.get(suggested)
+    if right is not None:
+        if right != el.get(attr):
+            return None  # two values: which one was meant is not certain
+        description = f"delete {attr}, a misspelt duplicate of {suggested}"
+        return Repair("safe", description, (RemoveAttribute(el, attr),))
+    if doc.origin is not None:
+        return None
+    operations = (RemoveAttribute(el, attr), SetAttribute(el, suggested, el.get(attr) or ""))
+    return Repair("safe", f"rename {attr} to {suggested}", operations)
+
+
+def _certain(attr: str, suggested: str, known: list[str]) -> bool:
+    """``suggested`` is the only closest name within typo range, with the same digits."""
+    ranked = sorted(
+        (distance(_fold(attr), _fold(n)), distance(attr, n), n)
+        for n in known
+        if near_miss(attr, [n]) is not None
+    )
+    if not ranked or ranked[0][2] != suggested:
+        return False
+    if len(ranked) > 1 and ranked[0][:2] == ranked[1][:2]:
+        return False
+    return re.findall(r"\d", attr) == re.findall(r"\d", suggested)
+
+
+def _fold(name: str) -> str:
+    return name.lower().replace("_", "").replace("-", "")

@@ -17,16 +17,38 @@ xacro prefix is missing.
 ## How to fix
 Point `reference` at an existing link or joint (mind xacro prefixes such as `left_`),
 or delete the block if the element it configured is gone.
+
+`urdflint fix` corrects a reference that is certainly a typo: one link or joint name is
+closest and at most one edit away (two for names of 8+ letters, ignoring case and `_`),
+with the same numbers and the same one- and two-letter words (`l_foot` is not a typo of
+`r_foot`); every key of the block belongs to that link or joint, and none of its other
+blocks sets the same keys.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
+
+from lxml import etree
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair, SetAttribute
 from urdflint.model.finding import Severity
-from urdflint.model.gazebo_spec import scopes_of, suggest
+from urdflint.model.gazebo_spec import (
+    JOINT,
+    KEYS,
+    LINK,
+    belongs,
+    blocks_for,
+    distance,
+    homes,
+    keys_of,
+    near_miss,
+    scopes_of,
+    suggest,
+)
 from urdflint.model.values import has_xacro
 
 
@@ -35,6 +57,7 @@ from urdflint.model.values import has_xacro
     "undefined-gazebo-reference",
     Severity.ERROR,
     fix="Rename the reference to an existing link or joint, or remove the block.",
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     names = [*doc.link_map, *doc.joint_map]
@@ -42,6 +65,46 @@ def check(doc: Document) -> Iterator[Hit]:
         ref = gazebo.get("reference")
         if not ref or has_xacro(ref) or scopes_of(doc, gazebo) is not None:
             continue
-        guess = suggest(ref, names)
+        target = _correction(doc, gazebo, ref, names)
+        guess = target or suggest(ref, names)
         hint = f" (did you mean {guess!r}?)" if guess else ""
-        yield Hit(gazebo, f"<gazebo reference={ref!r}> names no link or joint{hint}")
+        repair = None
+        if target is not None:
+            operations = (SetAttribute(gazebo, "reference", target),)
+            repair = Repair("safe", f"point the block at {target!r}", operations)
+        yield Hit(gazebo, f"<gazebo reference={ref!r}> names no link or joint{hint}", repair=repair)
+
+
+def _correction(doc: Document, gazebo: etree._Element, ref: str, names: list[str]) -> str | None:
+    """The name ``ref`` is certainly a misspelling of: the one closest name within typo
+    range (:func:`near_miss`), with the same numbers and short words, whose link or joint
+    takes every key of the block and whose own blocks set none of them (the block's values
+    would then compete with theirs)."""
+    ranked = sorted(
+        (distance(_fold(ref), _fold(n)), distance(ref, n), n)
+        for n in set(names)
+        if near_miss(ref, [n]) is not None
+    )
+    if not ranked or (len(ranked) > 1 and ranked[0][:2] == ranked[1][:2]):
+        return None
+    target = ranked[0][2]
+    if _marks(ref) != _marks(target):
+        return None
+    scopes = frozenset({LINK} if target in doc.link_map else set())
+    scopes |= {JOINT} if target in doc.joint_map else set()
+    keys = [str(k.tag) for k in keys_of(gazebo)]
+    if not all(belongs(k, scopes) for k in keys if homes(k)):
+        return None  # a link's keys pointed at a joint: dropped there too (G007)
+    taken = {str(k.tag) for g in blocks_for(doc, target) for k in keys_of(g)}
+    return None if any(k in KEYS and k in taken for k in keys) else target
+
+
+def _fold(name: str) -> str:
+    return name.lower().replace("_", "").replace("-", "")
+
+
+def _marks(name: str) -> tuple[list[str], list[str]]:
+    """The numbers and the one- and two-letter words of a name: a different one names
+    another element (``finger_1``/``finger_2``, ``l_foot``/``r_foot``), not a typo."""
+    words = re.findall(r"[A-Z]+(?![a-z])|[A-Z]?[a-z]+", name)  # snake_case and camelCase
+    return re.findall(r"\d+", name), [w.lower() for w in words if len(w) <= 2]

@@ -25,20 +25,31 @@ Add `<gazebo reference="link"><material>Gazebo/Orange</material></gazebo>` (a st
 Gazebo Classic material script), or, for both simulators, an SDF material in a visual
 blob: `<gazebo reference="link"><visual><material>` with `<ambient>` and `<diffuse>`.
 Or accept the grey if the robot is never simulated in Gazebo Classic.
+
+`urdflint fix` writes the second form, in the link's `<gazebo reference>` block or in a
+new one after the `<link>`, with the values Gazebo Sim derives from the URDF colour
+(`<ambient>` and `<diffuse>` both rgb / 0.8, capped at 1, and the same alpha; sdformat's
+`parser_urdf.cc`, gazebosim/sdformat#526): Gazebo Sim shows the link exactly as before,
+and Gazebo Classic now the same. It does so when the finding is a warning (a file with
+`<gazebo>` blocks, for Gazebo Classic) and every visual of the link has that same colour,
+since the blob colours all of them; not in xacro sources, where the link may be written
+in a macro.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from xml.sax.saxutils import escape
 
 from lxml import etree
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import targets
-from urdflint.model.document import Document
+from urdflint.model.document import Document, Link, children
+from urdflint.model.edits import InsertChild, Repair
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import blocks_for, keys_of
-from urdflint.model.values import vector
+from urdflint.model.values import fmt, vector
 
 # Achromatic colours in this brightness band look like Gazebo's default grey anyway.
 GREY_SPREAD, GREY_LOW, GREY_HIGH = 0.05, 0.4, 0.8
@@ -50,6 +61,7 @@ GREY_SPREAD, GREY_LOW, GREY_HIGH = 0.05, 0.4, 0.8
     Severity.WARNING,
     fix='Add <gazebo reference="link"><material>Gazebo/...</material></gazebo> for the link.',
     targets=targets.GAZEBO,
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     classic = "gazebo-classic" in doc.targets
@@ -63,7 +75,7 @@ def check(doc: Document) -> Iterator[Hit]:
             found = _colour(doc, visual)
             if found is None:
                 continue
-            material, label = found
+            material, label, _ = found
             if classic:
                 tail = " (Gazebo Sim converts it)" if "gz-sim" in doc.targets else ""
                 message = (
@@ -75,7 +87,8 @@ def check(doc: Document) -> Iterator[Hit]:
                     f"link {link.name!r} is coloured only by its URDF colour{label}, "
                     "which Gazebo Sim converts but Gazebo Classic ignores"
                 )
-            yield Hit(material, message, severity=severity)
+            repair = _repair(doc, link) if severity is Severity.WARNING else None
+            yield Hit(material, message, severity=severity, repair=repair)
             break
 
 
@@ -89,8 +102,11 @@ def _has_gazebo_material(doc: Document, name: str) -> bool:
     return False
 
 
-def _colour(doc: Document, visual: etree._Element) -> tuple[etree._Element, str] | None:
-    """The visual's ``<material>`` and a label for it, when it sets a colour Gazebo drops."""
+def _colour(
+    doc: Document, visual: etree._Element
+) -> tuple[etree._Element, str, etree._Element] | None:
+    """The visual's ``<material>``, a label for it and its ``<color>``, when it sets a colour
+    Gazebo drops."""
     material = visual.find("material")
     if material is None or _own_colours(visual):
         return None
@@ -102,7 +118,7 @@ def _colour(doc: Document, visual: etree._Element) -> tuple[etree._Element, str]
         colour = defined.find("color") if defined is not None else None
     if colour is None or _mid_grey(colour):
         return None
-    return material, label
+    return material, label, colour
 
 
 def _mid_grey(colour: etree._Element) -> bool:
@@ -120,3 +136,38 @@ def _own_colours(visual: etree._Element) -> bool:
         return False
     filename = (mesh.get("filename") or "").lower()
     return not filename.endswith(".stl")
+
+
+def _repair(doc: Document, link: Link) -> Repair | None:
+    """An SDF material with the link's URDF colour, in a ``<visual>`` blob of its
+    ``<gazebo reference>`` block (which colours every visual of the link)."""
+    if doc.origin is not None or link.name is None:
+        return None  # xacro: the link may be written in a macro, for several names
+    found = [_colour(doc, v) for v in link.visuals]
+    colours = {vector(f[2], "rgba", 4) if f else None for f in found}
+    colour = colours.pop() if len(colours) == 1 else None
+    blocks = blocks_for(doc, link.name)
+    if colour is None or any(k.tag == "visual" for g in blocks for k in keys_of(g)):
+        return None  # visuals of different colours, or a visual blob already there
+    rgba = _gz_sim(colour)
+    material = f"<ambient>{rgba}</ambient>\n<diffuse>{rgba}</diffuse>"
+    visual = f"<visual>\n  <material>\n{_indent(material, 4)}\n  </material>\n</visual>"
+    description = f"give link {link.name!r} its colour in Gazebo Classic too ({rgba})"
+    if blocks:
+        last = children(blocks[0])
+        op = InsertChild(blocks[0], visual, after=last[-1] if last else None)
+        return Repair("safe", description, (op,))
+    name = escape(link.name, {'"': "&quot;"})
+    block = f'<gazebo reference="{name}">\n{_indent(visual, 2)}\n</gazebo>'
+    return Repair("safe", description, (InsertChild(doc.robot, block, after=link.element),))
+
+
+def _gz_sim(rgba: tuple[float, ...]) -> str:
+    """What sdformat's URDF converter writes for a URDF colour (diffuse rgb / 0.8, ambient
+    0.5 * rgb / 0.4: the same), as Gazebo Sim shows it."""
+    *rgb, alpha = rgba
+    return " ".join([*(fmt(min(max(c / 0.8, 0.0), 1.0)) for c in rgb), fmt(alpha)])
+
+
+def _indent(xml: str, width: int) -> str:
+    return "\n".join(" " * width + line for line in xml.split("\n"))

@@ -21,17 +21,29 @@ A deprecated key works today and prints a warning on every spawn.
 Replace `<cfmDamping>` by `<implicitSpringDamper>`; express joint-stop stiffness and
 damping with `<stopErp>` and `<stopCfm>`; delete `<initialJointPosition>` and
 `<canonicalBody>`.
+
+`urdflint fix` renames `<cfmDamping>` to `<implicitSpringDamper>` (sdformat reads both the
+same way), unless the joint's blocks already have an `<implicitSpringDamper>`. The other
+keys have no automatic fix: their replacement is not a rename, or deleting them would hide
+what the author meant.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
+from lxml import etree
+from urdflint.rules.gazebo.renaming import rename_key
+
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import targets
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import LEGACY, describe, keys_of
+
+# Deprecated keys that sdformat reads exactly like their replacement: a rename fixes them.
+RENAMED = {"cfmDamping": "implicitSpringDamper"}
 
 
 @rule(
@@ -40,6 +52,7 @@ from urdflint.model.gazebo_spec import LEGACY, describe, keys_of
     Severity.WARNING,
     fix="Replace the key by its current equivalent, or remove it.",
     targets=targets.GAZEBO,
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     for gazebo in doc.gazebo:
@@ -49,4 +62,9 @@ def check(doc: Document) -> Iterator[Hit]:
             if legacy is None:
                 continue
             state, advice = legacy
-            yield Hit(el, f"<{el.tag}> of {owner} is {state}", fix=advice)
+            yield Hit(el, f"<{el.tag}> of {owner} is {state}", fix=advice, repair=_rename(doc, el))
+
+
+def _rename(doc: Document, el: etree._Element) -> Repair | None:
+    """Rename a deprecated key to its replacement (see :func:`rename_key`)."""
+    return rename_key(doc, el, RENAMED.get(str(el.tag)))

@@ -26,26 +26,45 @@ leaves the robot with Gazebo's defaults while its author believes it is tuned.
 Fix the spelling (keys are case-sensitive: `mu1`, `mu2`, `kp`, `kd`, `selfCollide`,
 `maxContacts`, `turnGravityOff`, ...), or remove the element. For a deliberate custom
 element read by your own plugin, put it inside that `<plugin>`.
+
+`urdflint fix` renames a misspelt key when one name is closest (`<turnGravityOf>` to
+`<turnGravityOff>`, `<max_contacts>` to `<maxContacts>`, `<kp_>` to `<kp>`; names of one
+setting count as one: `<selfcollide>` becomes `<selfCollide>` in a link's block,
+`<self_collide>` in the robot's), with the same digits, belonging in the block, and not
+already set for the block's element. Two equally close names (`<mu>`: `mu1` or `mu2`?)
+or a different number (`<mu3>`) get no automatic fix.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
+
+from lxml import etree
+from urdflint.rules.gazebo.renaming import rename_key
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
+from urdflint.model.edits import Repair
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import (
+    KEYS,
     LEGACY,
     SCOPE_SDF,
+    belongs,
     candidates,
     checked_scopes,
     describe,
+    distance,
     homes,
     keys_of,
     near_miss,
     scopes_of,
 )
+
+# Names of the same setting: the converter key reads every value the SDF element takes, and
+# sdformat reads cfmDamping exactly like implicitSpringDamper.
+SYNONYMS = {"self_collide": "selfCollide", "cfmDamping": "implicitSpringDamper"}
 
 
 @rule(
@@ -53,6 +72,7 @@ from urdflint.model.gazebo_spec import (
     "unrecognized-gazebo-element",
     Severity.INFO,
     fix="Fix the element's spelling, or remove it if it is not meant for Gazebo.",
+    fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     known = candidates()
@@ -67,7 +87,8 @@ def check(doc: Document) -> Iterator[Hit]:
             name = str(el.tag)
             if name in LEGACY or homes(name):
                 continue
-            guess = near_miss(name, known)
+            target = _correction(name, known, scopes)
+            guess = target or near_miss(name, known)
             if guess is not None:
                 yield Hit(
                     el,
@@ -75,6 +96,7 @@ def check(doc: Document) -> Iterator[Hit]:
                     f"(did you mean <{guess}>?)",
                     fix=f"Rename it to <{guess}>.",
                     severity=Severity.WARNING,
+                    repair=_rename(doc, el, target),
                 )
             else:
                 yield Hit(
@@ -82,3 +104,33 @@ def check(doc: Document) -> Iterator[Hit]:
                     f"<{name}> in the <gazebo> block of {owner} is neither a Gazebo key nor "
                     f"an SDF element; {copied}",
                 )
+
+
+def _correction(name: str, known: frozenset[str], scopes: frozenset[str]) -> str | None:
+    """The key ``name`` is a misspelling of, when that is certain: one name (or names of the
+    same setting, :data:`SYNONYMS`) is closest, ignoring case and ``_`` first, then exactly;
+    it has the same digits (``mu`` is not ``mu1``) and belongs in a block of ``scopes``.
+    Among names of one setting: the current one, the closest as written, the converter key."""
+    ranked = sorted(
+        (distance(_fold(name), _fold(c)), distance(name, c), c)
+        for c in known
+        if near_miss(name, [c]) is not None
+    )
+    best = [c for d, e, c in ranked if (d, e) == ranked[0][:2]] if ranked else []
+    if len({SYNONYMS.get(c, c) for c in best}) != 1:
+        return None
+    group = {best[0], SYNONYMS.get(best[0], best[0])}
+    group |= {c for c, same in SYNONYMS.items() if same in group}
+    fitting = sorted(c for c in group if belongs(c, scopes))
+    fitting.sort(key=lambda c: (c in LEGACY, c not in best, c not in KEYS))
+    if not fitting or re.findall(r"\d", name) != re.findall(r"\d", fitting[0]):
+        return None
+    return fitting[0]
+
+
+def _fold(name: str) -> str:
+    return name.lower().replace("_", "").replace("-", "")
+
+
+def _rename(doc: Document, el: etree._Element, target: str | None) -> Repair | None:
+    return rename_key(doc, el, target)

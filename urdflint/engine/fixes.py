@@ -94,10 +94,11 @@ def _insert(doc: Document, op: E.InsertChild) -> list[Edit]:
     data, nl = parent.data, E.newline(parent.data)
     unit = INDENT
     if op.after is not None:
-        after = locate(doc, op.after)
-        at = _line_end(data, E.element_end(data, after.start))
-        pad = E.indentation(data, after.start).decode()
-        return [edit(parent, at, at, nl + pad + op.xml.replace("\n", nl + pad))]
+        after = locate(doc, op.after)  # the sibling's own file (xacro: maybe another one)
+        at = _line_end(after.data, E.element_end(after.data, after.start))
+        pad = E.indentation(after.data, after.start).decode()
+        nl = E.newline(after.data)
+        return [edit(after, at, at, nl + pad + op.xml.replace("\n", nl + pad))]
     pad = E.indentation(data, parent.start).decode() + unit
     body = op.xml.replace("\n", nl + pad)
     end = E.start_tag_end(data, parent.start)
