@@ -1,6 +1,6 @@
 """``urdflint fix --unsafe-fixes`` on copies of the 36 corpus robots: it converges (a second
-run changes nothing), the fixed codes stop firing with a fix, no new error appears, and
-Pinocchio still builds what it built before."""
+run changes nothing), no new error appears, and Pinocchio and MuJoCo (where installed) still
+load what they loaded before."""
 
 from __future__ import annotations
 
@@ -34,6 +34,21 @@ def errors(path: Path, args: list[str]) -> Counter[str]:
     return Counter(f.code for f in found if str(f.severity) == "error")
 
 
+def mujoco_loads(path: Path, args: list[str]) -> bool | None:
+    """Whether MuJoCo builds the model (its own process; None when not installed)."""
+    from urdflint.engines import runner
+
+    if not runner.installed("mujoco"):
+        return None
+    settings = config.Settings(
+        confirm=("mujoco",),
+        select=("E001", "E005"),
+        package_paths={a.split("=")[1]: Path(a.split("=", 2)[2]) for a in args},
+    )
+    found = linter.lint_path(path, str(path), settings).findings
+    return not any(f.code in ("E001", "E005") for f in found)
+
+
 def builds(path: Path) -> bool:
     pinocchio = pytest.importorskip("pinocchio")
     try:
@@ -51,6 +66,7 @@ def test_fix_converges_and_adds_no_error(robot: Path, tmp_path: Path, capsys) ->
     args = package_args(robot)
     before = errors(path, args)
     built = builds(path)
+    loaded = mujoco_loads(path, args)
     main(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *args, str(path)])
     once = path.read_bytes()
     main(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *args, str(path)])
@@ -61,3 +77,5 @@ def test_fix_converges_and_adds_no_error(robot: Path, tmp_path: Path, capsys) ->
     assert not new, f"new errors after fixing: {sorted(new)}"
     if built:
         assert builds(path), "Pinocchio built the original but not the fixed model"
+    if loaded:
+        assert mujoco_loads(path, args), "MuJoCo loaded the original but not the fixed model"
