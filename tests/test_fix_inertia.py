@@ -100,6 +100,7 @@ EXPECTED = {  # fixed twin: {link: (mass, com, (ixx, iyy, izz), rpy)}
         "hand": (0.125, (0, 0, 0.025), box(0.125, 0.05, 0.05, 0.05), None),
     },
     "I001/bad_mujoco": {"upper_arm": (3.0, (0, 0, 0.15), box(3.0, 0.1, 0.1, 0.3), None)},
+    "I001/bad_four_spaces": {"arm": (3.0, (0, 0, 0), box(3.0, 0.1, 0.1, 0.3), None)},
     "I005/bad": {"upper_arm": (1.0, (0, 0, 0.15), ARM, None)},
     "I005/bad_welded_body": {"shell": (1.0, (0, 0, 0.15), ARM, None)},
     "I005/bad_welded": {"camera": (0.01, (0, 0, 0), (1.2e-4 / 3,) * 3, None)},  # balanced

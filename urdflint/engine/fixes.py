@@ -23,6 +23,7 @@ from urdflint.model.positions import Lines
 
 EXPRESSION = ("${", "$(")
 INDENT = "  "
+CHILD_RE = re.compile(rb"<[A-Za-z_]")  # the next element's start tag (not a comment or PI)
 TRAILING = re.compile(rb"(?:[ \t]|<!--(?:(?!-->).)*-->)*", re.S)  # blanks and comments
 
 
@@ -92,7 +93,8 @@ def _rename(place: Place, op: E.RenameElement) -> list[Edit]:
 def _insert(doc: Document, op: E.InsertChild) -> list[Edit]:
     parent = locate(doc, op.parent)
     data, nl = parent.data, E.newline(parent.data)
-    unit = INDENT
+    unit = _unit(data, parent.start)
+    op = E.InsertChild(op.parent, _reindent(op.xml, unit), op.after)
     if op.after is not None:
         after = locate(doc, op.after)  # the sibling's own file (xacro: maybe another one)
         at = _line_end(after.data, E.element_end(after.data, after.start))
@@ -109,6 +111,28 @@ def _insert(doc: Document, op: E.InsertChild) -> list[Edit]:
         return [edit(parent, end - 2, end, text)]
     at = _line_end(data, end)
     return [edit(parent, at, at, nl + pad + body)]
+
+
+def _unit(data: bytes, start: int) -> str:
+    """The file's indentation step: a child's indentation beyond its parent's (the element
+    at ``start``, else the ``<robot>`` element), two spaces when unknown."""
+    robot = re.search(rb"<robot[\s>]", data)
+    for tag in (start, robot.start() if robot else -1):
+        if tag < 0:
+            continue
+        outer = E.indentation(data, tag)
+        child = CHILD_RE.search(data, E.start_tag_end(data, tag))
+        inner = E.indentation(data, child.start()) if child else b""
+        if len(inner) > len(outer) and inner.startswith(outer):
+            return inner[len(outer) :].decode()
+    return INDENT
+
+
+def _reindent(xml: str, unit: str) -> str:
+    """``xml`` written with two spaces per level, with ``unit`` per level instead."""
+    if unit == INDENT:
+        return xml
+    return re.sub(r"(?m)^((?:  )+)", lambda m: unit * (len(m.group(1)) // 2), xml)
 
 
 def _line_end(data: bytes, at: int) -> int:
