@@ -26,7 +26,7 @@ from typing import Any
 from urdflint.engine import fixes
 from urdflint.model.edits import Autofix
 
-MAX_ROUNDS = 4  # as urdflint fix
+MAX_ROUNDS = fixes.MAX_ROUNDS  # as urdflint fix
 NO_NEWLINE = "\\ No newline at end of file\n"
 
 
@@ -46,24 +46,15 @@ def rounds(
     """Lint and fix ``target`` until nothing changes: the last lint's result, the file's
     original bytes and how many fixes were applied."""
     original = target.read_bytes()
-    applied = 0
-    result = lint()
-    for _ in range(MAX_ROUNDS):
-        found = [fix for f in result.findings if (fix := mine(f.autofix, shown, target))]
-        changed = fixes.apply_all(found, unsafe=unsafe)
-        if str(target) not in changed:
-            break
-        _old, new, count = changed[str(target)]
-        applied += count
-        _write(target, new)
-        fixes.forget_files()
-        result = lint()
+    result, _originals, applied = fixes.rounds(
+        lint, unsafe, _write, lambda fix: mine(fix, shown, target)
+    )
     return result, original, applied
 
 
-def _write(target: Path, data: bytes) -> None:
-    """Replace the upload's bytes (never through a link)."""
-    fd = os.open(target, os.O_WRONLY | os.O_TRUNC | os.O_NOFOLLOW)
+def _write(path: str, data: bytes) -> None:
+    """Replace the upload's bytes (never through a link; only the upload's edits are kept)."""
+    fd = os.open(path, os.O_WRONLY | os.O_TRUNC | os.O_NOFOLLOW)
     with os.fdopen(fd, "wb") as out:
         out.write(data)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -48,7 +49,7 @@ def fix_file(path: Path, code: str, unsafe: bool) -> int:
     argv = ["fix", "--isolated", "--select", code, "--exit-zero", str(path)]
     toml = path.with_suffix(".toml")
     if toml.is_file():
-        data = config.from_mapping(__import__("tomllib").loads(toml.read_text()))
+        data = config.from_mapping(tomllib.loads(toml.read_text()))
         argv += [f"--target={t}" for t in data.targets]
     return main(argv + (["--unsafe-fixes"] if unsafe else []))
 

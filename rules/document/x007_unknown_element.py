@@ -50,7 +50,6 @@ top-level elements (a `<lnk>` would add a link to the tree), are left to you.
 from __future__ import annotations
 
 import difflib
-import re
 from collections.abc import Iterator
 
 from lxml import etree
@@ -60,7 +59,7 @@ from urdflint.model.document import Document, children
 from urdflint.model.edits import RenameElement, Repair
 from urdflint.model.finding import Severity
 from urdflint.model.schema import SPECS, describe, homes, walk
-from urdflint.model.spelling import distance, near_miss
+from urdflint.model.spelling import ranked, same_digits
 
 # Well-known mistakes that deserve a specific hint: (context, tag) -> hint.
 HINTS = {
@@ -117,22 +116,14 @@ def _rename(el: etree._Element, context: str, suggested: str | None) -> Repair |
     if suggested is None or context == "robot":
         return None  # a whole link or joint appearing is not a spelling fix: left to you
     tag = str(el.tag)
-    ranked = sorted(
-        (distance(_fold(tag), _fold(c)), distance(tag, c), c)
-        for c in SPECS[context].children
-        if near_miss(tag, [c]) is not None
-    )
-    if not ranked or ranked[0][2] != suggested:
+    found = ranked(tag, SPECS[context].children)
+    if not found or found[0][2] != suggested:
         return None
-    if len(ranked) > 1 and ranked[0][:2] == ranked[1][:2]:
+    if len(found) > 1 and found[0][:2] == found[1][:2]:
         return None  # two names as close: not certain
-    if re.findall(r"\d", tag) != re.findall(r"\d", suggested):
+    if not same_digits(tag, suggested):
         return None
     parent = el.getparent()
     if suggested not in MANY and parent is not None and children(parent, suggested):
         return None  # URDF reads only the first one: the two would compete
     return Repair("safe", f"rename <{tag}> to <{suggested}>", (RenameElement(el, suggested),))
-
-
-def _fold(name: str) -> str:
-    return name.lower().replace("_", "").replace("-", "")

@@ -48,7 +48,6 @@ expression), are left to you.
 from __future__ import annotations
 
 import difflib
-import re
 from collections.abc import Iterator
 
 from lxml import etree
@@ -58,7 +57,7 @@ from urdflint.model.document import Document
 from urdflint.model.edits import RemoveAttribute, Repair, SetAttribute
 from urdflint.model.finding import Severity
 from urdflint.model.schema import EXTENSION_ATTRS, SPECS, describe, walk
-from urdflint.model.spelling import distance, near_miss
+from urdflint.model.spelling import ranked, same_digits
 from urdflint.model.values import vector
 
 # Attributes written in the wrong place often enough to deserve a specific hint.
@@ -135,17 +134,9 @@ def _repair(
 
 def _certain(attr: str, suggested: str, known: list[str]) -> bool:
     """``suggested`` is the only closest name within typo range, with the same digits."""
-    ranked = sorted(
-        (distance(_fold(attr), _fold(n)), distance(attr, n), n)
-        for n in known
-        if near_miss(attr, [n]) is not None
-    )
-    if not ranked or ranked[0][2] != suggested:
+    found = ranked(attr, known)
+    if not found or found[0][2] != suggested:
         return False
-    if len(ranked) > 1 and ranked[0][:2] == ranked[1][:2]:
+    if len(found) > 1 and found[0][:2] == found[1][:2]:
         return False
-    return re.findall(r"\d", attr) == re.findall(r"\d", suggested)
-
-
-def _fold(name: str) -> str:
-    return name.lower().replace("_", "").replace("-", "")
+    return same_digits(attr, suggested)

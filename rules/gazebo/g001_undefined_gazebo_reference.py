@@ -42,13 +42,12 @@ from urdflint.model.gazebo_spec import (
     LINK,
     belongs,
     blocks_for,
-    distance,
     homes,
     keys_of,
-    near_miss,
     scopes_of,
     suggest,
 )
+from urdflint.model.spelling import ranked
 from urdflint.model.values import has_xacro
 
 
@@ -80,14 +79,10 @@ def _correction(doc: Document, gazebo: etree._Element, ref: str, names: list[str
     range (:func:`near_miss`), with the same numbers and short words, whose link or joint
     takes every key of the block and whose own blocks set none of them (the block's values
     would then compete with theirs)."""
-    ranked = sorted(
-        (distance(_fold(ref), _fold(n)), distance(ref, n), n)
-        for n in set(names)
-        if near_miss(ref, [n]) is not None
-    )
-    if not ranked or (len(ranked) > 1 and ranked[0][:2] == ranked[1][:2]):
+    found = ranked(ref, set(names))
+    if not found or (len(found) > 1 and found[0][:2] == found[1][:2]):
         return None
-    target = ranked[0][2]
+    target = found[0][2]
     if _marks(ref) != _marks(target):
         return None
     scopes = frozenset({LINK} if target in doc.link_map else set())
@@ -97,10 +92,6 @@ def _correction(doc: Document, gazebo: etree._Element, ref: str, names: list[str
         return None  # a link's keys pointed at a joint: dropped there too (G007)
     taken = {str(k.tag) for g in blocks_for(doc, target) for k in keys_of(g)}
     return None if any(k in KEYS and k in taken for k in keys) else target
-
-
-def _fold(name: str) -> str:
-    return name.lower().replace("_", "").replace("-", "")
 
 
 def _marks(name: str) -> tuple[list[str], list[str]]:

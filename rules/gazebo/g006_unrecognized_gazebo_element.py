@@ -37,7 +37,6 @@ or a different number (`<mu3>`) get no automatic fix.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterator
 
 from lxml import etree
@@ -55,12 +54,12 @@ from urdflint.model.gazebo_spec import (
     candidates,
     checked_scopes,
     describe,
-    distance,
     homes,
     keys_of,
     near_miss,
     scopes_of,
 )
+from urdflint.model.spelling import ranked, same_digits
 
 # Names of the same setting: the converter key reads every value the SDF element takes, and
 # sdformat reads cfmDamping exactly like implicitSpringDamper.
@@ -111,25 +110,17 @@ def _correction(name: str, known: frozenset[str], scopes: frozenset[str]) -> str
     same setting, :data:`SYNONYMS`) is closest, ignoring case and ``_`` first, then exactly;
     it has the same digits (``mu`` is not ``mu1``) and belongs in a block of ``scopes``.
     Among names of one setting: the current one, the closest as written, the converter key."""
-    ranked = sorted(
-        (distance(_fold(name), _fold(c)), distance(name, c), c)
-        for c in known
-        if near_miss(name, [c]) is not None
-    )
-    best = [c for d, e, c in ranked if (d, e) == ranked[0][:2]] if ranked else []
+    found = ranked(name, known)
+    best = [c for d, e, c in found if (d, e) == found[0][:2]] if found else []
     if len({SYNONYMS.get(c, c) for c in best}) != 1:
         return None
     group = {best[0], SYNONYMS.get(best[0], best[0])}
     group |= {c for c, same in SYNONYMS.items() if same in group}
     fitting = sorted(c for c in group if belongs(c, scopes))
     fitting.sort(key=lambda c: (c in LEGACY, c not in best, c not in KEYS))
-    if not fitting or re.findall(r"\d", name) != re.findall(r"\d", fitting[0]):
+    if not fitting or not same_digits(name, fitting[0]):
         return None
     return fitting[0]
-
-
-def _fold(name: str) -> str:
-    return name.lower().replace("_", "").replace("-", "")
 
 
 def _rename(doc: Document, el: etree._Element, target: str | None) -> Repair | None:

@@ -10,15 +10,12 @@ unified diff, and writes nothing.
 from __future__ import annotations
 
 import argparse
-import difflib
 import math
 import sys
 from collections.abc import Callable
 from typing import Any
 
 from urdflint.cli.common import EXIT_FINDINGS, EXIT_OK, UsageError
-
-MAX_ROUNDS = 4
 
 
 def add_options(parser: argparse.ArgumentParser) -> None:
@@ -58,30 +55,22 @@ def density(text: str) -> float:
 
 
 def rounds(args: argparse.Namespace, lint: Callable[[], Any]) -> tuple[Any, dict[str, bytes], int]:
-    """Lint and fix until nothing changes; the last lint's outcome, each changed file's
-    original bytes, and how many fixes were applied."""
+    """Lint and fix until nothing changes (:func:`urdflint.engine.fixes.rounds`); the last
+    lint's outcome, each changed file's original bytes, and how many fixes were applied."""
     from urdflint.engine import fixes
 
-    originals: dict[str, bytes] = {}
-    applied = 0
-    outcome = lint()
-    for _ in range(MAX_ROUNDS):
-        found = [f.autofix for f in outcome.findings if f.autofix is not None]
-        changed = fixes.apply_all(found, unsafe=args.unsafe_fixes)
-        if not changed:
-            break
-        for path, (old, new, count) in changed.items():
-            originals.setdefault(path, old)
-            applied += count
-            with open(path, "wb") as out:
-                out.write(new)
-        fixes.forget_files()
-        outcome = lint()
-    return outcome, originals, applied
+    return fixes.rounds(lint, args.unsafe_fixes, _write)
+
+
+def _write(path: str, data: bytes) -> None:
+    with open(path, "wb") as out:
+        out.write(data)
 
 
 def diff(args: argparse.Namespace, outcome: Any) -> int:
     """Print the first round's fixes as a unified diff; the number of files it changes."""
+    import difflib
+
     from urdflint.engine import fixes
 
     found = [f.autofix for f in outcome.findings if f.autofix is not None]

@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from lxml import etree
 
@@ -23,6 +24,7 @@ from urdflint.model.positions import Lines
 
 EXPRESSION = ("${", "$(")
 INDENT = "  "
+MAX_ROUNDS = 4  # urdflint fix and POST /v1/fix
 CHILD_RE = re.compile(rb"<[A-Za-z_]")  # the next element's start tag (not a comment or PI)
 TRAILING = re.compile(rb"(?:[ \t]|<!--(?:(?!-->).)*-->)*", re.S)  # blanks and comments
 
@@ -221,3 +223,30 @@ def apply_all(
         if new != old:
             changed[path] = (old, new, counts.get(path, 0))
     return changed
+
+
+def rounds(
+    lint: Callable[[], Any],
+    unsafe: bool,
+    write: Callable[[str, bytes], None],
+    choose: Callable[[Autofix | None], Autofix | None] = lambda fix: fix,
+) -> tuple[Any, dict[str, bytes], int]:
+    """Lint, apply the fixes ``choose`` keeps, ``write`` the changed files, lint again, until
+    nothing changes or :data:`MAX_ROUNDS` rounds have run (a fix that overlapped another, or
+    only becomes possible after it, is applied in a later round). The last lint's result,
+    each changed file's original bytes, and how many fixes were applied."""
+    originals: dict[str, bytes] = {}
+    applied = 0
+    result = lint()
+    for _ in range(MAX_ROUNDS):
+        found = [fix for f in result.findings if (fix := choose(f.autofix)) is not None]
+        changed = apply_all(found, unsafe=unsafe)
+        if not changed:
+            break
+        for path, (old, new, count) in changed.items():
+            originals.setdefault(path, old)
+            applied += count
+            write(path, new)
+        forget_files()
+        result = lint()
+    return result, originals, applied

@@ -192,8 +192,9 @@ def stamp(doc: Document, rule: Rule, hit: Hit, settings: Settings) -> Finding:
         effects = tuple((t, hit.effects[t]) for t in chosen if t in hit.effects)
     else:
         effects = for_targets(rule.effects, hit.variant, chosen)
-    severity = settings.severity.get(rule.code) or hit.severity or rule.severity
-    if rule.by_target and effects and not (settings.severity.get(rule.code) or hit.severity):
+    configured = settings.severity.get(rule.code)
+    severity = configured or hit.severity or rule.severity
+    if rule.by_target and effects and not (configured or hit.severity):
         severity = max(effect.level for _, effect in effects)
     shown, message = hit.path or doc.path, hit.message
     if doc.recovered and rule.code != "X001":

@@ -31,6 +31,7 @@ from urdflint.model.bodies import (
 )
 from urdflint.model.effects import Effect
 from urdflint.model.finding import Severity
+from urdflint.model.targets import LABELS
 
 if TYPE_CHECKING:
     from urdflint.model.document import Document
@@ -108,8 +109,7 @@ def verdict(doc: Document, name: str, declared: bool = True) -> Verdict | None:
         if target not in same:
             parts.append(effect.detail)
     if same:
-        names = " and ".join({"pybullet": "PyBullet", "drake": "Drake", "pinocchio": "Pinocchio"}[t]
-                             for t in same)  # fmt: skip
+        names = " and ".join(LABELS[t] for t in same)
         parts.append(f"{names} load{'s' if len(same) == 1 else ''} it {SINGULAR}")
     severity = max([Severity.WARNING] + ([base.severity] if base is not None else []))
     return Verdict(severity, "; ".join(parts), base.kind if base is not None else "")

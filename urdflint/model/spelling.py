@@ -3,7 +3,9 @@ when one candidate is clearly the closest."""
 
 from __future__ import annotations
 
+import re
 from collections import Counter
+from collections.abc import Iterable
 
 
 def distance(a: str, b: str) -> int:
@@ -28,6 +30,22 @@ def _bag_distance(a: str, b: str) -> int:
 
 def _fold(name: str) -> str:
     return name.lower().replace("_", "").replace("-", "")
+
+
+def ranked(name: str, candidates: Iterable[str]) -> list[tuple[int, int, str]]:
+    """The candidates within typo range of ``name`` (:func:`near_miss`), closest first:
+    ``(distance ignoring case and _, exact distance, candidate)``. A fix renames only when
+    the first is alone at its distance (the automatic fixes of X007, X013, G001, G006)."""
+    return sorted(
+        (distance(_fold(name), _fold(c)), distance(name, c), c)
+        for c in candidates
+        if near_miss(name, [c]) is not None
+    )
+
+
+def same_digits(a: str, b: str) -> bool:
+    """Whether two names have the same digits (``mu`` is not a typo of ``mu1``)."""
+    return re.findall(r"\d", a) == re.findall(r"\d", b)
 
 
 def near_miss(name: str, candidates: list[str] | tuple[str, ...] | frozenset[str]) -> str | None:
