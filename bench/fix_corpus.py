@@ -2,7 +2,7 @@
 """``urdflint fix --unsafe-fixes`` on copies of the shared corpus: findings per code before
 and after, and whether Pinocchio and MuJoCo load each robot before and after.
 
-    .venv/bin/python bench/fix_corpus.py [CORPUS_DIR]
+    .venv/bin/python bench/fix_corpus.py [CORPUS_DIR] [--write-meshes]
 
 Each robot is copied with its meshes folder into a temporary folder (its package map is
 passed as --package-path), linted, fixed, and linted again; nothing in the corpus changes.
@@ -47,7 +47,9 @@ def loads(path: Path, engine: str, packages: dict[str, Path]) -> bool | None:
     return not any(f.code in ("E001", "E005") for f in found)
 
 
-def one(robot: Path, folder: Path) -> tuple[Counter[str], Counter[str], dict[str, tuple]]:
+def one(
+    robot: Path, folder: Path, extra: list[str]
+) -> tuple[Counter[str], Counter[str], dict[str, tuple]]:
     shutil.copytree(robot, folder, dirs_exist_ok=True)
     path = folder / "model.urdf"
     mapping = folder / "package_map.json"
@@ -57,20 +59,22 @@ def one(robot: Path, folder: Path) -> tuple[Counter[str], Counter[str], dict[str
     before = Counter(f["code"] for f in report(path, args))
     engines = {e: (loads(path, e, packages),) for e in ("pinocchio", "mujoco")}
     with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-        cli(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *args, str(path)])
+        cli(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *extra, *args, str(path)])
     after = Counter(f["code"] for f in report(path, args))
     engines = {e: (*v, loads(path, e, packages)) for e, v in engines.items()}
     return before, after, engines
 
 
 def main() -> int:
-    corpus = Path(sys.argv[1]) if len(sys.argv) > 1 else CORPUS
+    extra = [a for a in sys.argv[1:] if a == "--write-meshes"]
+    given = [a for a in sys.argv[1:] if a not in extra]
+    corpus = Path(given[0]) if given else CORPUS
     total_before: Counter[str] = Counter()
     total_after: Counter[str] = Counter()
     rows = []
     for robot in sorted(p.parent for p in corpus.glob("*/model.urdf")):
         with tempfile.TemporaryDirectory() as tmp:
-            before, after, engines = one(robot, Path(tmp) / robot.name)
+            before, after, engines = one(robot, Path(tmp) / robot.name, extra)
         total_before.update(before)
         total_after.update(after)
         rows.append((robot.name, sum(before.values()), sum(after.values()), engines))

@@ -169,6 +169,13 @@ def _base(text: str | None) -> Settings:
             "config: 'package-paths' is not accepted by the service; upload the packages in "
             "the meshes zip (its top-level folders and package.xml files are the packages)"
         )
+    rules = data.get("rules") if isinstance(data, dict) else None
+    c001 = rules.get("C001") if isinstance(rules, dict) else None
+    if isinstance(c001, dict) and "write_meshes" in c001:
+        raise OptionError(
+            "config: 'rules.C001.write_meshes' is not accepted by the service: it "
+            "writes files beside the meshes; run urdflint fix --write-meshes locally"
+        )
     try:
         return config.from_mapping(data)
     except config.ConfigError as exc:

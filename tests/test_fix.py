@@ -51,6 +51,8 @@ def fix_file(path: Path, code: str, unsafe: bool) -> int:
     if toml.is_file():
         data = config.from_mapping(tomllib.loads(toml.read_text()))
         argv += [f"--target={t}" for t in data.targets]
+        if data.rule_options.get("C001", {}).get("write_meshes"):
+            argv.append("--write-meshes")
     return main(argv + (["--unsafe-fixes"] if unsafe else []))
 
 

@@ -79,3 +79,31 @@ def test_fix_converges_and_adds_no_error(robot: Path, tmp_path: Path, capsys) ->
         assert builds(path), "Pinocchio built the original but not the fixed model"
     if loaded:
         assert mujoco_loads(path, args), "MuJoCo loaded the original but not the fixed model"
+
+
+@needs_corpus
+def test_write_meshes_gives_every_mesh_only_link_its_hull(tmp_path: Path, capsys) -> None:
+    """eve_r3 draws 19 links with OBJ meshes and gives them no collision: a copy of the whole
+    robot (its meshes too) is fixed with --write-meshes; the corpus itself is never written."""
+    robot = tmp_path / "eve_r3"
+    shutil.copytree(CORPUS / "eve_r3", robot)
+    path = robot / "model.urdf"
+    args = package_args(robot)
+    before = errors(path, args)
+    fix = ["fix", "--isolated", "--unsafe-fixes", "--write-meshes", "--exit-zero", *args]
+    main([*fix, str(path)])
+    once = path.read_bytes(), sorted(p.name for p in robot.rglob("*_hull.obj"))
+    main([*fix, str(path)])
+    capsys.readouterr()
+    assert (path.read_bytes(), sorted(p.name for p in robot.rglob("*_hull.obj"))) == once
+    assert len(once[1]) == 13  # left and right links share a mesh, and its hull
+    assert path.read_text().count("_hull.obj") == 19
+    after = errors(path, args)
+    assert not {code for code in after if after[code] > before.get(code, 0)}
+    settings = config.Settings(
+        select=("C001", "C004", "C005", "C006"),
+        package_paths={a.split("=")[1]: Path(a.split("=", 2)[2]) for a in args},
+    )
+    left = linter.lint_path(path, str(path), settings).findings
+    assert not [f for f in left if f.code == "C001" and str(f.severity) == "warning"]
+    assert not [f for f in left if "_hull.obj" in f.message]  # every hull resolves and reads

@@ -25,28 +25,36 @@ finding for the link.
 `urdflint fix --unsafe-fixes` adds after each visual a `<collision>` with the same
 `<origin>` and shape, when the link's body has no collision at all (warning) and every
 visual of the link is a box, cylinder or sphere of valid size, in a plain URDF file. The
-fix is unsafe because the link starts to make contact. Meshes get no automatic fix (a
-collision mesh should be simpler than the visual one), nor do xacro sources (the values
-may be expressions).
+fix is unsafe because the link starts to make contact. A mesh visual is given a
+collision only with `--write-meshes` (or `write_meshes = true` in `[rules.C001]`): the
+fix then writes the mesh's convex hull as `<stem>_hull.obj` beside it (an existing file
+is never overwritten) and the collision refers to it with the visual's `scale`. A
+convex hull is what MuJoCo, PyBullet and Drake make of a collision mesh anyway, and OBJ
+is the one format every target reads for collision (Drake refuses STL and Collada, C009).
+xacro sources get no automatic fix (the values may be expressions of a macro's parameters).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import Any
 from xml.sax.saxutils import quoteattr
 
 from lxml import etree
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, Link, children
-from urdflint.model.edits import InsertChild, Repair
+from urdflint.model.edits import CreateFile, InsertChild, Operation, Repair
 from urdflint.model.finding import Severity
+from urdflint.model.geometry import read_shape
 from urdflint.model.schema import SPECS
 from urdflint.model.structure import q, welded
-from urdflint.model.values import parse_numbers
+from urdflint.model.values import has_xacro, parse_numbers
+from urdflint.sources.hulls import HullFile, hull_file
 
 # The shapes copied into a collision, and how many positive numbers each attribute holds.
 PRIMITIVES = {"box": {"size": 3}, "cylinder": {"radius": 1, "length": 1}, "sphere": {"radius": 1}}
+HULL = "add a collision with each visual's shape (a mesh's convex hull, written beside it)"
 
 
 @rule(
@@ -55,8 +63,10 @@ PRIMITIVES = {"box": {"size": 3}, "cylinder": {"radius": 1, "length": 1}, "spher
     Severity.WARNING,
     fix="Add a <collision> with a simple shape that bounds the visual.",
     fixable="unsafe",
+    options={"write_meshes": False},
 )
-def check(doc: Document) -> Iterator[Hit]:
+def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
+    hulls = bool(opts["write_meshes"])
     for link in doc.links:
         if not link.visuals or link.collisions:
             continue
@@ -68,7 +78,7 @@ def check(doc: Document) -> Iterator[Hit]:
             yield Hit(
                 link.element,
                 f"link {q(link.name)} has a visual but no collision",
-                repair=_repair(doc, link),
+                repair=_repair(doc, link, hulls),
             )
         else:
             yield Hit(
@@ -79,27 +89,60 @@ def check(doc: Document) -> Iterator[Hit]:
             )
 
 
-def _repair(doc: Document, link: Link) -> Repair | None:
-    """A collision after each visual, with its origin and shape (primitives only)."""
+def _repair(doc: Document, link: Link, hulls: bool) -> Repair | None:
+    """A collision after each visual, with its origin and shape (primitives; meshes as their
+    convex hull, written beside them, with ``hulls``)."""
     if doc.origin is not None:
         return None  # xacro: the values may be expressions of a macro's parameters
-    operations = []
+    operations: list[Operation] = []
+    written: list[Operation] = []
+    meshes = False
     for visual in link.visuals:
-        xml = _collision(visual)
+        shape = _shape(visual)
+        if shape is not None and shape.tag == "mesh":
+            meshes = True
+            if not hulls:
+                continue
+            hull = _hull(doc, visual)
+            if isinstance(hull, str):
+                return Repair("unsafe", HULL, (), hull)
+            written.append(CreateFile(str(hull.path), hull.text))
+            shape = _hull_mesh(shape, hull.uri)
+        xml = _collision(visual, shape)
         if xml is None:
             return None
         operations.append(InsertChild(link.element, xml, after=visual))
-    description = "add a collision with the shape of each visual"
-    return Repair("unsafe", description, tuple(operations))
+    if meshes and not hulls:
+        return Repair("unsafe", HULL, (), "the visual is a mesh: --write-meshes writes its hull")
+    description = HULL if meshes else "add a collision with the shape of each visual"
+    return Repair("unsafe", description, tuple(operations + written))
 
 
-def _collision(visual: etree._Element) -> str | None:
+def _shape(visual: etree._Element) -> etree._Element | None:
     geometry = visual.find("geometry")
     shapes = children(geometry) if geometry is not None else []
-    if len(shapes) != 1 or shapes[0].tag not in PRIMITIVES:
+    return shapes[0] if len(shapes) == 1 else None
+
+
+def _hull(doc: Document, visual: etree._Element) -> HullFile | str:
+    shape = read_shape(visual)
+    if shape is None or not (shape.filename or "").strip() or has_xacro(shape.filename or ""):
+        return "the mesh's filename is missing or not a plain path"
+    return hull_file(doc, shape)
+
+
+def _hull_mesh(mesh: etree._Element, uri: str) -> etree._Element:
+    """``<mesh filename="<hull>" scale="..."/>``: the visual's mesh pointing at its hull."""
+    copy = etree.Element("mesh", filename=uri)
+    if mesh.get("scale") is not None:
+        copy.set("scale", mesh.get("scale") or "")
+    return copy
+
+
+def _collision(visual: etree._Element, shape: etree._Element | None) -> str | None:
+    if shape is None or shape.tag not in (*PRIMITIVES, "mesh"):
         return None
-    shape = shapes[0]
-    for attr, size in PRIMITIVES[str(shape.tag)].items():
+    for attr, size in PRIMITIVES.get(str(shape.tag), {}).items():
         values = parse_numbers(shape.get(attr))
         if values is None or len(values) != size or min(values) <= 0:
             return None  # an invalid shape (C003) is not copied

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 from collections.abc import Callable
 from typing import Any
@@ -35,6 +36,12 @@ def add_options(parser: argparse.ArgumentParser) -> None:
         metavar="KG_PER_M3",
         help="density of the <inertial> that the unsafe fix of I001 computes from a link's "
         "collision geometry (default 1000, MuJoCo's; rules.I001.density in the configuration)",
+    )
+    parser.add_argument(
+        "--write-meshes",
+        action="store_true",
+        help="let the unsafe fix of C001 give a mesh visual a collision: its convex hull, "
+        "written as <stem>_hull.obj beside the mesh (never over an existing file)",
     )
     parser.add_argument(
         "--diff",
@@ -80,7 +87,7 @@ def diff(args: argparse.Namespace, outcome: Any) -> int:
             difflib.unified_diff(
                 old.decode("utf-8", "replace").splitlines(keepends=True),
                 new.decode("utf-8", "replace").splitlines(keepends=True),
-                fromfile=path,
+                fromfile=path if os.path.lexists(path) else "/dev/null",
                 tofile=path,
             )
         )
@@ -99,7 +106,8 @@ def drive(
     if not fixing:
         return lint(), None
     outcome, originals, applied = rounds(args, lint)
-    args.fixed = (len(originals), applied)
+    created = sorted(path for path, old in originals.items() if not old)
+    args.fixed = (len(originals) - len(created), applied, created)
     return outcome, None
 
 
@@ -107,12 +115,14 @@ def report(args: argparse.Namespace, findings: list[Any]) -> None:
     """One line on stderr: what was fixed, and what more ``--unsafe-fixes`` would fix."""
     if not hasattr(args, "fixed"):
         return
-    files, applied = args.fixed
+    files, applied, created = args.fixed
     left = [f for f in findings if f.autofix is not None and not f.autofix.unavailable]
     unsafe = args.unsafe_fixes
     more = sum(1 for f in left if f.autofix.applicability == "unsafe") if not unsafe else 0
     text = f"urdflint: fixed {applied} finding{'s' if applied != 1 else ''}"
     text += f" in {files} file{'s' if files != 1 else ''}"
+    if created:
+        text += f"; wrote {', '.join(created)}"
     if more:
         text += f"; {more} more with --unsafe-fixes"
     print(text, file=sys.stderr)

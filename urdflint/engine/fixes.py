@@ -44,6 +44,8 @@ class Place:
 
 def resolve(doc: Document, repair: Repair) -> Autofix:
     """The repair as edits, or the reason it cannot be applied automatically."""
+    if repair.unavailable:
+        return Autofix(repair.applicability, repair.description, (), repair.unavailable)
     found: list[Edit] = []
     try:
         for operation in repair.operations:
@@ -78,7 +80,22 @@ def _edits(doc: Document, op: E.Operation) -> list[Edit]:
         return [edit(place, start, end, "")]
     if isinstance(op, E.RenameElement):
         return _rename(locate(doc, op.element), op)
+    if isinstance(op, E.CreateFile):
+        return _create(op)
     return _insert(doc, op)
+
+
+def _create(op: E.CreateFile) -> list[Edit]:
+    """A new file's whole text; nothing when the file already holds that text."""
+    try:
+        present = Path(op.path).read_bytes()
+    except FileNotFoundError:
+        return [Edit(op.path, 0, 0, op.text, create=True)]
+    except OSError as exc:
+        raise Unavailable(f"{op.path} cannot be read ({exc.strerror})") from None
+    if present != op.text.encode("utf-8"):
+        raise Unavailable(f"{op.path} exists with other content; it is not overwritten")
+    return []
 
 
 def _rename(place: Place, op: E.RenameElement) -> list[Edit]:
@@ -218,7 +235,12 @@ def apply_all(
         try:
             old = Path(path).read_bytes()
         except OSError:
-            continue
+            if not all(e.create for e in found) or os.path.lexists(path):
+                continue
+            old = b""  # a new file (a written collision mesh)
+        else:
+            if any(e.create for e in found):
+                continue  # created meanwhile: never overwritten
         new, _ = E.apply(old, found)
         if new != old:
             changed[path] = (old, new, counts.get(path, 0))

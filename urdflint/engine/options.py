@@ -105,8 +105,13 @@ def overrides(args: argparse.Namespace) -> dict[str, object]:
     confirm = [e for group in getattr(args, "confirm", None) or () for e in group]
     if confirm:
         found["confirm"] = tuple(dict.fromkeys(confirm))
+    given: dict[str, dict[str, Any]] = {}
     if getattr(args, "density", None) is not None:  # --density: I001's unsafe fix
-        found["rule_options"] = {"I001": {"density": args.density}}
+        given["I001"] = {"density": args.density}
+    if getattr(args, "write_meshes", False):  # C001's unsafe fix for mesh visuals
+        given["C001"] = {"write_meshes": True}
+    if given:
+        found["rule_options"] = given
     return found
 
 

@@ -57,7 +57,18 @@ class RemoveAttribute:
     name: str
 
 
-Operation = SetAttribute | RemoveElement | InsertChild | RenameElement | RemoveAttribute
+@dataclass(frozen=True)
+class CreateFile:
+    """A new file with ``text`` (a collision mesh beside its visual one): created only where
+    no file is, or where the same text already is."""
+
+    path: str
+    text: str
+
+
+Operation = (
+    SetAttribute | RemoveElement | InsertChild | RenameElement | RemoveAttribute | CreateFile
+)
 
 
 @dataclass(frozen=True)
@@ -68,6 +79,7 @@ class Repair:
     applicability: Applicability
     description: str
     operations: tuple[Operation, ...]
+    unavailable: str | None = None  # why the fix is not offered here (e.g. needs an option)
 
 
 # -- what it becomes -------------------------------------------------------------------------
@@ -86,14 +98,18 @@ class Edit:
     column: int = 1
     end_line: int = 1
     end_column: int = 1
+    create: bool = False  # a new file whose whole text is ``text``
 
     def to_dict(self) -> dict[str, object]:
-        return {
+        data: dict[str, object] = {
             "path": self.path,
             "start": {"line": self.line, "column": self.column},
             "end": {"line": self.end_line, "column": self.end_column},
             "content": self.text,
         }
+        if self.create:
+            data["create"] = True
+        return data
 
 
 @dataclass(frozen=True, slots=True)

@@ -81,7 +81,7 @@ class MeshInfo:
     def watertight(self) -> bool:
         """Every edge is shared by exactly two triangles (computed on first use)."""
         if "watertight" not in self._memo:
-            with _quiet_numpy():
+            with quiet_numpy():
                 self._memo["watertight"] = bool(self.ok and self._mesh.is_watertight)
         found: bool = self._memo["watertight"]
         return found
@@ -117,7 +117,7 @@ def _vec(values: Any) -> Vec:
 
 
 def _solid(mesh: Any, volume: float | None) -> Solid | None:
-    with _quiet_numpy():
+    with quiet_numpy():
         return _solid_of(mesh, volume)
 
 
@@ -219,7 +219,7 @@ class MeshCache:
         try:
             self.loads += 1
             self.bytes += size
-            with _quiet_numpy():
+            with quiet_numpy():
                 mesh = trimesh_load(path, TRIMESH_TYPES[ext], self._resolver(path))
                 if ext == "dae" and len(mesh.faces) == 0:
                     mesh = _collada_geometries(path) or mesh
@@ -324,7 +324,7 @@ def _empty_reason(path: Path) -> str:
 
 
 @contextmanager
-def _quiet_numpy() -> Iterator[None]:
+def quiet_numpy() -> Iterator[None]:
     """Degenerate meshes make numpy divide by zero: the result is checked, not printed."""
     import numpy as np
 
@@ -334,7 +334,7 @@ def _quiet_numpy() -> Iterator[None]:
 
 
 def _volume(mesh: Any) -> float | None:
-    with _quiet_numpy():
+    with quiet_numpy():
         return _volume_of(mesh)
 
 
