@@ -132,6 +132,21 @@ BAD_TENSOR: dict[str, Effect] = {
     "ros": kept("KDL keeps the tensor; robot_state_publisher does not use it", INFO),
 }
 
+# A zero principal moment with A + B >= C (a rod, a point mass), observed on a moving link:
+# sdformat, Drake and PyBullet load it, MuJoCo refuses (lumping.degenerate: welded links).
+DEGENERATE_TENSOR: dict[str, Effect] = {
+    **gazebo(kept("sdformat accepts a zero principal moment while A + B >= C holds")),
+    "mujoco": refused(
+        '"inertia must have positive eigenvalues", or for a point mass "mass and inertia of '
+        'moving bodies must be larger than mjMINVAL"'
+    ),
+    "drake": kept("accepts a zero principal moment"),
+    "pybullet": kept("loads the tensor as written"),
+    "isaac": kept("the tensor is diagonalised and written to PhysX unchecked"),
+    "pinocchio": kept("builds the model with the tensor as written"),
+    "ros": kept("KDL keeps the tensor; robot_state_publisher does not use it", INFO),
+}
+
 NEGATIVE_MASS: dict[str, Effect] = {
     **gazebo(refused('sdformat: "invalid inertia"')),
     "mujoco": refused('"mass and inertia of moving bodies must be larger than mjMINVAL"'),

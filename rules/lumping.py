@@ -7,11 +7,18 @@ drops massless links; these functions adjust a rule's table (:mod:`consequences`
 from __future__ import annotations
 
 from lxml import etree
-from urdflint.rules.consequences import INVALID_MASS, TWO_PARENTS, gazebo
+from urdflint.rules.consequences import (
+    BAD_TENSOR,
+    DEGENERATE_TENSOR,
+    INVALID_MASS,
+    TWO_PARENTS,
+    gazebo,
+)
 
-from urdflint.model.bodies import GAZEBO_MASSLESS, bodies
+from urdflint.model.bodies import GAZEBO_MASSLESS, bodies, selected
 from urdflint.model.document import Document, Joint
-from urdflint.model.effects import Effect, kept, refused
+from urdflint.model.effects import Consequence, Effect, kept, refused, warns
+from urdflint.model.inertia import judge, principal_moments
 
 
 def impossible(doc: Document, name: str, table: dict[str, Effect]) -> dict[str, Effect]:
@@ -53,3 +60,40 @@ def invalid_mass(doc: Document, mass: etree._Element) -> dict[str, Effect]:
     if sum(m for m in welded if m > 0) > GAZEBO_MASSLESS:
         return {**INVALID_MASS, **gazebo(kept("the links welded to it give its body a mass"))}
     return dict(INVALID_MASS)
+
+
+PYBULLET_ZEROED = '"Bad inertia tensor properties, setting inertia to zero" on the welded link'
+DRAKE_PARSING = '"While parsing inertia matrix: ... The rotational inertia" on the welded link'
+
+
+def degenerate(doc: Document, name: str, tensor: tuple[float, ...]) -> dict[str, Effect]:
+    """A tensor with a zero principal moment on link ``name``. With A + B < C as well it is
+    impossible (:func:`impossible`); else sdformat, Drake and PyBullet load it and MuJoCo
+    refuses it, on a welded link too (it checks every body before fusing them), except an
+    all-zero tensor on a welded link (observed, MuJoCo 4.0)."""
+    welded = bodies(doc).merged(name)
+    if judge(principal_moments(tensor)) == "impossible":
+        table = impossible(doc, name, BAD_TENSOR)
+        if welded:  # observed: both warn; the welded link's body barely changes
+            table = {**table, "pybullet": warns(PYBULLET_ZEROED), "drake": warns(DRAKE_PARSING)}
+        return table
+    if not any(tensor) and welded:
+        fused = kept("a welded point mass is fused into its parent body")
+        return {**DEGENERATE_TENSOR, "mujoco": fused}
+    return DEGENERATE_TENSOR
+
+
+def degenerate_matters(doc: Document, name: str, tensor: tuple[float, ...]) -> bool:
+    """Whether a zero principal moment on link ``name`` is worth reporting: it carries mass,
+    and a selected target refuses it, or its lumped body has no valid inertia and the link
+    carries 1% or more of that body's mass (else the heavier links are reported)."""
+    b = bodies(doc)
+    own = b.inertials.get(name)
+    if own is None or own.mass is None or own.mass == 0:
+        return False
+    if own.mass < 0:
+        return True
+    table = degenerate(doc, name, tensor)
+    if any(table[t].consequence is Consequence.REFUSED for t in selected(doc) if t in table):
+        return True
+    return not b.excused(name)

@@ -235,7 +235,7 @@ def parse(
         ignore=[_split(values["ignore"])] if "ignore" in values else [],
         exit_zero=False,
         fail_on=fail_on,
-        target=target,
+        target=[tuple(target)] if target else [],  # as --target gives them
         xacro_arg=_xacro_pairs(values.get("xacro_args", ())),
         expect_mass=_typed("expect_mass", _last(values, "expect_mass"), values_of.expect_mass),
         expect_com=_typed("expect_com", _last(values, "expect_com"), values_of.expect_com),

@@ -334,6 +334,36 @@ def triangle_violated(tree: Tree) -> Element | None:
     return _set(element, "izz", 3 * (_number(element, "ixx") + _number(element, "iyy")))
 
 
+def zero_moment_rod(tree: Tree) -> Element | None:
+    """ixx and the products zero, iyy = izz: a thin rod along x (singular, but A + B >= C)."""
+    element = inertia(tree)
+    if element is None:
+        return None
+    side = max(_number(element, "iyy"), _number(element, "izz"))
+    for name in ("ixx", *PRODUCTS):
+        _set(element, name, 0.0)
+    _set(element, "iyy", side)
+    return _set(element, "izz", side)
+
+
+def singular_welded_link(tree: Tree) -> Element | None:
+    """On the first link welded by a fixed joint to a link (not world) that has a mass, every
+    moment and product equal: a rank-1 tensor (principal moments 0, 0, 3x), as a CAD export
+    with placeholder products writes it (anymal_c's hatch)."""
+    for joint in joints(tree):
+        if joint.get("type") != "fixed" or parent_name(joint) == "world":
+            continue
+        child = link(tree, child_name(joint))
+        moments = child.find("inertial/inertia") if child is not None else None
+        if moments is None or not _positive(child.find("inertial/mass"), "value"):
+            continue
+        value = _float(moments, "ixx") or 0.001
+        for name in (*MOMENTS, *PRODUCTS):
+            _set(moments, name, value if value > 0 else 0.001)
+        return moments
+    return None
+
+
 def tiny_mass(tree: Tree) -> Element | None:
     """1e-9 kg, the inertia (moments and products) scaled down with it."""
     element, moments = mass(tree), inertia(tree)
@@ -653,6 +683,8 @@ DEFECTS: dict[str, Planter] = {
         negative_ixx,
         not_positive_definite,
         triangle_violated,
+        zero_moment_rod,
+        singular_welded_link,
         tiny_mass,
         invalid_number,
         root_link_with_mass_only,

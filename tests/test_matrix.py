@@ -110,6 +110,16 @@ def test_cli_matrix_respects_chosen_targets(capsys) -> None:
     ]
 
 
+def test_cli_targets_comma_separated_or_repeated(capsys) -> None:
+    path = str(ENGINES / "inverted_limits.urdf")
+    data = run_json(capsys, "--matrix", "--target", "mujoco, drake", "--target", "ros", path)
+    assert [r["target"] for r in data["matrix"]] == ["mujoco", "drake", "ros"]
+    with pytest.raises(SystemExit) as exit_:
+        main(["check", "--target", "mujoco,gazebo", path])
+    assert exit_.value.code == 2
+    assert "unknown target 'gazebo' (known: gazebo-classic," in capsys.readouterr().err
+
+
 def test_cli_without_matrix_has_no_matrix_key(capsys) -> None:
     assert "matrix" not in run_json(capsys, str(GOOD))
 

@@ -7,9 +7,11 @@ Reports links whose `<inertia>` has `ixx`, `iyy` or `izz` at or below zero:
   `ixx > 0` with `iyy = izz = 0` breaks the triangle inequality), always;
   values within 1e-15 kg·m² of zero count as rounding noise;
 - zeros that describe a possible but degenerate body (a point mass, a thin
-  rod) when the rigid body that engines simulate (the link plus the links fixed
-  to it) is left without a valid inertia and the link carries at least 1% of
-  that body's mass, or when the link's own mass is negative (I002 reports the
+  rod) when a selected target refuses them (MuJoCo: a rod even on a welded link,
+  since it checks every body before fusing welded ones; a point mass on a moving
+  link), or when the rigid body that engines simulate (the link plus the links
+  fixed to it) is left without a valid inertia and the link carries at least 1%
+  of that body's mass, or when the link's own mass is negative (I002 reports the
   mass, this rule the tensor: both problems in one run).
 
 Impossible tensors are an **error**, or a **warning** on a link welded by a
@@ -18,7 +20,9 @@ valid: Gazebo sums the welded link into that body before checking it. MuJoCo
 checks every link first, and Drake and PyBullet keep welded links as bodies, so
 for them it stays an error. Links without mass (I001, I002) are not judged for
 zeros, and a point mass on a frame fixed to a body with a real inertia (a tool
-or sensor frame) is accepted: Gazebo, Pinocchio, MuJoCo and Drake load it.
+or sensor frame) is accepted: Gazebo, Pinocchio, MuJoCo and Drake load it. Zeros
+that keep A + B >= C are loaded as written by sdformat, Drake and PyBullet
+(observed), so the effects line names MuJoCo alone as refusing.
 
 ## Why is this bad?
 The Gazebo tutorial warns that a zero principal moment "could lead to infinite
@@ -71,12 +75,13 @@ def check(doc: Document) -> Iterator[Hit]:
         negative = any(v < -ZERO_MOMENT for _, v in bad)
         impossible = negative or judge(principal_moments(inertial.tensor)) == "impossible"
         severity = impossible_severity(doc, name) if impossible else Severity.ERROR
-        if not impossible:  # zeros only: a point mass or a rod, possible but degenerate
-            mass = inertial.mass
-            if mass is None or mass == 0 or (mass > 0 and b.excused(name)):
-                continue
+        if impossible:
+            effects = L.impossible(doc, name, K.BAD_TENSOR)
+        elif L.degenerate_matters(doc, name, inertial.tensor):  # a point mass or a rod
+            effects = L.degenerate(doc, name, inertial.tensor)
+        else:
+            continue
         parts = [f"{k} = {fmt(v)}" for k, v in bad]
         listed = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
         message = f"link '{name}' has {listed} kg·m²" + welded_note(doc, name, severity)
-        effects = L.impossible(doc, name, K.BAD_TENSOR)
         yield Hit(inertial.inertia_element, message, severity=severity, effects=effects)

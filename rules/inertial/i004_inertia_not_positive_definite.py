@@ -11,9 +11,12 @@ principal moments (the eigenvalues of the full 3×3 tensor) and reports:
   checking it (MuJoCo checks every link first; Drake and PyBullet keep welded
   links as bodies);
 - a zero principal moment (within 1e-6 × the largest, or below 1e-15 kg·m²,
-  MuJoCo's mjMINVAL), possible but degenerate, unless the link has no mass, or
-  the body engines simulate has a valid inertia anyway, or the link carries
-  under 1% of that body's mass (then the heavier links are the ones reported).
+  MuJoCo's mjMINVAL), possible but degenerate, unless the link has no mass, or,
+  when no selected target refuses it, the body engines simulate has a valid
+  inertia anyway or the link carries under 1% of that body's mass (then the
+  heavier links are the ones reported). MuJoCo refuses it on a welded link too:
+  it checks every body before fusing welded ones (observed on anymal_c's hatch,
+  whose moments and products are all 0.001: principal moments 0, 0, 0.003).
 
 ## Why is this bad?
 Large products of inertia (`ixy`, `ixz`, `iyz`) can make a tensor with a
@@ -22,8 +25,9 @@ reports it ("A link named X has invalid inertia"). Observed on a moving link:
 MuJoCo 4.0 refuses both a negative and a zero principal moment ("inertia must
 have positive eigenvalues"); Drake 1.51 warns that a negative one "did not pass
 the test CouldBePhysicallyValid()" and substitutes a made-up inertia (a zero one
-it accepts); PyBullet 3.2.7 with `URDF_USE_INERTIA_FROM_FILE` sets a tensor with
-a negative principal moment to zero ("Bad inertia tensor properties"). Pinocchio
+it accepts; on a welded link both only warn); PyBullet 3.2.7 with
+`URDF_USE_INERTIA_FROM_FILE` sets a tensor with a negative principal moment to
+zero ("Bad inertia tensor properties"). Pinocchio
 loads it as it is and the dynamics become meaningless. A typical cause is a
 tensor exported about the wrong point or in the wrong frame, or with the
 products' signs flipped.
@@ -42,7 +46,7 @@ from urdflint.rules import consequences as K
 from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import Bodies, bodies, impossible_severity, welded_note
+from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
@@ -74,13 +78,9 @@ def check(doc: Document) -> Iterator[Hit]:
                 severity=severity,
                 effects=L.impossible(doc, name, K.BAD_TENSOR),
             )
-        elif moments[0] <= tol and not _harmless(b, name, inertial.mass):
+        elif moments[0] <= tol and L.degenerate_matters(doc, name, inertial.tensor):
             yield Hit(
                 inertial.inertia_element,
                 f"link '{name}' has a singular inertia tensor (principal moments {listed} kg·m²)",
+                effects=L.degenerate(doc, name, inertial.tensor),
             )
-
-
-def _harmless(b: Bodies, name: str, mass: float | None) -> bool:
-    """A degenerate tensor nobody simulates: on a massless link, or lumped into a sound body."""
-    return mass is None or mass == 0 or (mass > 0 and b.excused(name))

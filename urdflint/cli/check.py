@@ -86,9 +86,12 @@ def _options(check: argparse.ArgumentParser) -> None:
     check.add_argument(
         "--target",
         action="append",
-        choices=(*targets.TARGETS, targets.ALL),
+        type=options.target_list,
         default=[],
-        help="consumer the model is meant for (repeatable; default gazebo-classic; all: every one)",
+        metavar="TARGETS",
+        help="consumers the model is meant for: "
+        + ", ".join((*targets.TARGETS, targets.ALL))
+        + " (comma-separated or repeated; default gazebo-classic; all: every one)",
     )
     check.add_argument(
         "--matrix",

@@ -78,6 +78,16 @@ def engine_list(text: str) -> tuple[str, ...]:
         raise argparse.ArgumentTypeError(str(exc).replace("'--confirm': ", "")) from None
 
 
+def target_list(text: str) -> tuple[str, ...]:
+    """``--target mujoco,drake`` (or ``all``): the consumers the model is meant for."""
+    names = tuple(name.strip() for name in text.split(",") if name.strip())
+    try:
+        targets.validate(names or (text,))
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return names
+
+
 class UsageError(Exception):
     """A wrong option value: the CLI prints it and exits 2, the service answers 422."""
 
@@ -99,7 +109,7 @@ def overrides(args: argparse.Namespace) -> dict[str, object]:
     elif args.fail_on:
         found["fail_on"] = args.fail_on
     if args.target:
-        found["targets"] = targets.validate(args.target)
+        found["targets"] = targets.validate([t for group in args.target for t in group])
     if args.xacro_arg:
         found["xacro_args"] = dict(args.xacro_arg)
     confirm = [e for group in getattr(args, "confirm", None) or () for e in group]
