@@ -2,7 +2,7 @@
 """``urdflint fix --unsafe-fixes`` on copies of the shared corpus: findings per code before
 and after, and whether Pinocchio and MuJoCo load each robot before and after.
 
-    .venv/bin/python bench/fix_corpus.py [CORPUS_DIR] [--write-meshes]
+    .venv/bin/python bench/fix_corpus.py [CORPUS_DIR] [--write-meshes] [--target=NAMES]
 
 Each robot is copied with its meshes folder into a temporary folder (its package map is
 passed as --package-path), linted, fixed, and linted again; nothing in the corpus changes.
@@ -56,17 +56,19 @@ def one(
     found = json.loads(mapping.read_text()) if mapping.is_file() else {}
     packages = {name: folder / sub for name, sub in found.items()}
     args = [f"--package-path={name}={where}" for name, where in packages.items()]
+    args += [a for a in extra if a.startswith("--target")]
     before = Counter(f["code"] for f in report(path, args))
     engines = {e: (loads(path, e, packages),) for e in ("pinocchio", "mujoco")}
     with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-        cli(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *extra, *args, str(path)])
+        writes = [a for a in extra if a == "--write-meshes"]
+        cli(["fix", "--isolated", "--unsafe-fixes", "--exit-zero", *writes, *args, str(path)])
     after = Counter(f["code"] for f in report(path, args))
     engines = {e: (*v, loads(path, e, packages)) for e, v in engines.items()}
     return before, after, engines
 
 
 def main() -> int:
-    extra = [a for a in sys.argv[1:] if a == "--write-meshes"]
+    extra = [a for a in sys.argv[1:] if a.startswith("--")]
     given = [a for a in sys.argv[1:] if a not in extra]
     corpus = Path(given[0]) if given else CORPUS
     total_before: Counter[str] = Counter()

@@ -36,6 +36,13 @@ products' signs flipped.
 Re-export the tensor about the centre of mass, in the `<inertial><origin>`
 frame. Check the sign convention: URDF's `ixy` is the tensor entry, the negated
 product integral (some CAD tools print the product `∫xy dm` instead).
+
+`urdflint fix --unsafe-fixes` writes the tensor of the link's collision
+geometry at the declared mass, as for I005 (about its centroid in the link's
+axes; the declared centre of mass is kept). A link without usable collision
+geometry gets MuJoCo's balance when the principal moments also break A + B >= C
+(all three set to their average, which keeps their sum and loses the axes); a
+singular tensor that keeps the inequality (a rod) has no automatic fix there.
 """
 
 from __future__ import annotations
@@ -44,6 +51,7 @@ from collections.abc import Iterator
 
 from urdflint.rules import consequences as K
 from urdflint.rules import lumping as L
+from urdflint.rules.inertial import refit
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies, impossible_severity, welded_note
@@ -60,6 +68,7 @@ from urdflint.model.values import fmt
     Severity.ERROR,
     fix="Re-export the tensor about the centre of mass, in the inertial origin frame.",
     effects=single(K.BAD_TENSOR),
+    fixable="unsafe",
 )
 def check(doc: Document) -> Iterator[Hit]:
     b = bodies(doc)
@@ -77,10 +86,12 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"(principal moments {listed} kg·m²)" + welded_note(doc, name, severity),
                 severity=severity,
                 effects=L.impossible(doc, name, K.BAD_TENSOR),
+                repair=refit.repair_moments(doc, name, inertial),
             )
         elif moments[0] <= tol and L.degenerate_matters(doc, name, inertial.tensor):
             yield Hit(
                 inertial.inertia_element,
                 f"link '{name}' has a singular inertia tensor (principal moments {listed} kg·m²)",
                 effects=L.degenerate(doc, name, inertial.tensor),
+                repair=refit.repair_moments(doc, name, inertial),
             )

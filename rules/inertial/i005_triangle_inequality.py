@@ -50,12 +50,10 @@ from urdflint.rules.inertial import refit
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import bodies, impossible_severity, welded_note
 from urdflint.model.document import Document
-from urdflint.model.edits import Repair
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
-from urdflint.model.inertia import Inertial, principal_moments, tolerance
+from urdflint.model.inertia import principal_moments, tolerance
 from urdflint.model.values import fmt
-from urdflint.sources.inertia_from_geometry import balance
 
 
 @rule(
@@ -81,24 +79,5 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"and {fmt(a)} + {fmt(b)} < {fmt(c)}" + welded_note(doc, name, severity),
                 severity=severity,
                 effects=L.impossible(doc, name, K.BAD_TENSOR),
-                repair=_repair(doc, name, inertial),
+                repair=refit.repair_moments(doc, name, inertial),
             )
-
-
-def _repair(doc: Document, name: str, inertial: Inertial) -> Repair | None:
-    """The collision geometry's tensor at the declared mass, else MuJoCo's balance."""
-    el, tensor = inertial.inertia_element, inertial.matrix
-    estimate = refit.estimate_at_mass(doc, name, inertial)
-    if estimate is not None:
-        text, operations = refit.refit(inertial, estimate, "only the moments are impossible")
-    elif el is not None and tensor is not None:
-        balanced = balance(tensor)
-        operations = refit.set_tensor(el, balanced)
-        text = (
-            "MuJoCo's balanceinertia: the three principal moments set to their average, "
-            f"{fmt(balanced[0][0])} kg·m² (no usable collision geometry to compute the tensor "
-            "from)"
-        )
-    else:
-        return None
-    return Repair("unsafe", text, tuple(operations)) if operations else None

@@ -1,4 +1,4 @@
-"""The unsafe repairs of I001, I005, I006 and I007: inertials computed from a link's
+"""The unsafe repairs of I001, I004, I005, I006 and I007: inertials computed from a link's
 collision geometry (:mod:`urdflint.sources.inertia_from_geometry`) written into the file.
 
 A declared tensor is replaced by that of the collision shapes at the declared mass, about
@@ -13,10 +13,15 @@ from __future__ import annotations
 from lxml import etree
 
 from urdflint.model.document import Document
-from urdflint.model.edits import Operation, SetAttribute
+from urdflint.model.edits import Operation, Repair, SetAttribute
 from urdflint.model.inertia import Inertial, Mat, judge, principal_moments
 from urdflint.model.values import fmt, number, parse_number
-from urdflint.sources.inertia_from_geometry import Estimate, geometry_inertial, inertia_attributes
+from urdflint.sources.inertia_from_geometry import (
+    Estimate,
+    balance,
+    geometry_inertial,
+    inertia_attributes,
+)
 
 ORDER = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")  # the order of Inertial.tensor
 MAX_DENSITY = 1e5  # kg/m^3, as I007: denser collision shapes are tokens, not the body
@@ -92,3 +97,28 @@ def refit(inertial: Inertial, estimate: Estimate, kept: str) -> tuple[str, list[
     if link_axes(inertial):
         text += ', so the origin\'s rpy becomes "0 0 0"'
     return text + f"); the declared centre of mass is kept: {kept}", operations
+
+
+def repair_moments(doc: Document, name: str, inertial: Inertial) -> Repair | None:
+    """An impossible or singular tensor (I004, I005): the collision geometry's at the declared
+    mass, else MuJoCo's balance when A + B < C (none for a tensor it leaves as it is)."""
+    el, tensor = inertial.inertia_element, inertial.matrix
+    estimate = estimate_at_mass(doc, name, inertial)
+    if estimate is not None:
+        text, operations = refit(inertial, estimate, "only the moments are impossible")
+    elif el is not None and tensor is not None:
+        try:
+            balanced = balance(tensor)
+        except ValueError:
+            return None
+        if balanced == tensor:
+            return None
+        operations = set_tensor(el, balanced)
+        text = (
+            "MuJoCo's balanceinertia: the three principal moments set to their average, "
+            f"{fmt(balanced[0][0])} kg·m² (no usable collision geometry to compute the tensor "
+            "from)"
+        )
+    else:
+        return None
+    return Repair("unsafe", text, tuple(operations)) if operations else None
