@@ -4,6 +4,7 @@ Importing this package registers every rule (explicit imports, greppable).
 """
 
 from urdflint.rules import (  # noqa: F401
+    conventions,
     document,
     engines,
     gazebo,
@@ -11,7 +12,9 @@ from urdflint.rules import (  # noqa: F401
     inertial,
     joints,
     meta,
+    moveit,
     physics,
+    ros2_control,
     structure,
     transmissions,
 )

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint import __version__
-from urdflint.cli import fix
+from urdflint.cli import fix, package
 from urdflint.cli.common import (
     EXIT_ERROR,
     EXIT_FINDINGS,
@@ -93,6 +93,7 @@ def _options(check: argparse.ArgumentParser) -> None:
         + ", ".join((*targets.TARGETS, targets.ALL))
         + " (comma-separated or repeated; default gazebo-classic; all: every one)",
     )
+    package.add_options(check)
     check.add_argument(
         "--matrix",
         action="store_true",

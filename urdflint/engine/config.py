@@ -34,8 +34,11 @@ KEYS = frozenset(
         "xacro-args",
         "per-file-xacro-args",
         "confirm",
+        "srdf",
+        "profile",
     }
 )
+PROFILES = ("mobile", "industrial", "humanoid")  # the conventions rules (N family) to run
 ENGINES = ("mujoco", "pybullet", "drake", "pinocchio", "sdformat")  # --confirm: the E rules
 EXPECT_KEYS = frozenset({"mass", "mass-tolerance", "com", "com-tolerance", "q"})
 
@@ -85,6 +88,8 @@ class Settings:
     per_file_xacro_args: tuple[tuple[str, dict[str, str]], ...] = ()
     source: Path | None = None  # the file these settings came from
     confirm: tuple[str, ...] = ()  # engines that load the model (E rules; --confirm)
+    srdf: Path | None = None  # the MoveIt SRDF of the robot (M rules; else found beside it)
+    profile: str | None = None  # "mobile", "industrial" or "humanoid": REP conventions
 
     def xacro_args_for(self, path: str) -> dict[str, str]:
         """``xacro-args``, then each matching ``per-file-xacro-args`` table (later wins)."""
@@ -236,7 +241,21 @@ def _inputs(settings: Settings, data: dict[str, Any], source: Path | None) -> Se
             for glob, args in table.items()
         )
         settings = replace(settings, per_file_xacro_args=pairs)
+    if "srdf" in data:
+        if not isinstance(data["srdf"], str) or not data["srdf"].strip():
+            raise ConfigError("'srdf' must be the path of an SRDF file")
+        base = source.parent if source is not None else Path.cwd()
+        settings = replace(settings, srdf=base / data["srdf"])
+    if "profile" in data:
+        settings = replace(settings, profile=profile("profile", data["profile"]))
     return settings
+
+
+def profile(key: str, value: Any) -> str:
+    """A conventions profile name (``mobile``, ``industrial`` or ``humanoid``)."""
+    if value not in PROFILES:
+        raise ConfigError(f"'{key}' must be one of {', '.join(PROFILES)}, not {value!r}")
+    return str(value)
 
 
 def _xacro_table(key: str, table: dict[str, Any]) -> dict[str, str]:

@@ -115,6 +115,10 @@ def overrides(args: argparse.Namespace) -> dict[str, object]:
     confirm = [e for group in getattr(args, "confirm", None) or () for e in group]
     if confirm:
         found["confirm"] = tuple(dict.fromkeys(confirm))
+    if getattr(args, "srdf", None):
+        found["srdf"] = Path(args.srdf)
+    if getattr(args, "profile", None):
+        found["profile"] = args.profile
     given: dict[str, dict[str, Any]] = {}
     if getattr(args, "density", None) is not None:  # --density: I001's unsafe fix
         given["I001"] = {"density": args.density}

@@ -1,0 +1,1 @@
+"""M: MoveIt, the robot's SRDF checked against its URDF."""
