@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import pytest
@@ -196,11 +195,9 @@ def test_not_a_robot_and_empty_robot_give_a_note() -> None:
 
 def test_huge_trees_are_refused_and_long_chains_do_not_recurse() -> None:
     many = "".join(link(f"l{i}") for i in range(MAX_NODES + 1))
-    start = time.perf_counter()
     assert "trees are drawn up to" in render_tree(robot(many))
-    unnamed = robot("<link/>" * 50_000)  # element paths of unnamed links cost O(n) each
+    unnamed = robot("<link/>" * 50_000)  # refused before any per-link work (bench/ times it)
     assert "trees are drawn up to" in render_tree(unnamed)
-    assert time.perf_counter() - start < 2
     chain = link("l0") + "".join(
         link(f"l{i}") + joint(f"j{i}", f"l{i - 1}", f"l{i}") for i in range(1, 1500)
     )
@@ -228,15 +225,12 @@ def test_output_is_deterministic() -> None:
 
 
 @needs_corpus
-def test_a_corpus_humanoid_renders_fast_and_compact() -> None:
+def test_a_corpus_humanoid_renders_compact() -> None:
     path = CORPUS / "eve_r3" / "model.urdf"
     doc = linter.load(path, str(path), Settings(select=("S", "J", "I", "X")))
     result = linter.lint_document(doc, Settings(select=("S", "J", "I", "X")))
-    start = time.perf_counter()
-    svg = render_tree(doc, result.findings)
-    elapsed = time.perf_counter() - start
+    svg = render_tree(doc, result.findings)  # its speed is measured under bench/, not here
     root = parse(svg)
-    assert elapsed < 1.0
     assert len(svg) < 400_000
     assert len(groups(root, "link")) == len(doc.links) == 96
     width, height = (float(v) for v in root.get("viewBox").split()[2:])

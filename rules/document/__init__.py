@@ -14,4 +14,5 @@ from urdflint.rules.document import (  # noqa: F401
     x011_xacro_library,
     x012_undeclared_namespace_prefix,
     x013_unknown_attribute,
+    x014_unsafe_name,
 )

@@ -13,4 +13,8 @@ from urdflint.rules.geometry import (  # noqa: F401
     c010_invalid_color,
     c011_duplicate_geometry_name,
     c012_texture_not_found,
+    c013_self_collision,
+    c014_non_portable_mesh_path,
+    c015_package_not_a_dependency,
+    c016_path_case_mismatch,
 )

@@ -7,8 +7,9 @@ in the configuration, `ROS_PACKAGE_PATH`, `AMENT_PREFIX_PATH` and a
 `package.xml` search upward from the URDF; `file://` and plain paths relative
 to the URDF's folder. Every reference that does not lead to a file is
 reported, not only the first, with where urdflint looked and why it failed.
-When the folder holds a file with the same name in another case or with
-another extension, the message names it.
+When the folder holds a file with the same name and another extension, the
+message names it; a path that exists in another letter case is C016's
+(path-case-mismatch), not reported here.
 
 The severity says how sure the finding is:
 - error: the package (or the URDF's folder) was found and the file is not in it;

@@ -15,4 +15,7 @@ from urdflint.rules.joints import (  # noqa: F401
     j012_unsupported_joint_type_for_target,
     j013_incomplete_joint_element,
     j014_mimic_of_fixed_joint,
+    j015_limit_in_degrees,
+    j017_mimic_not_enforced,
+    j018_mimic_range_outside_limits,
 )

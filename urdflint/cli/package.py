@@ -11,8 +11,9 @@ def add_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--srdf",
         metavar="FILE",
-        help="the robot's MoveIt SRDF (M rules); default: <stem>.srdf beside the file, or the "
-        "package's config/*.srdf for the same robot name",
+        help="the robot's MoveIt SRDF or .srdf.xacro (M rules); default: <stem>.srdf beside "
+        "the file, the package's config/*.srdf of the same robot, or the SRDF a MoveIt config "
+        "package's .setup_assistant pairs with it",
     )
     parser.add_argument(
         "--profile",

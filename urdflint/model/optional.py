@@ -5,7 +5,7 @@ from __future__ import annotations
 import importlib.util
 from functools import cache
 
-EXTRAS = {"pinocchio": "dynamics", "trimesh": "model", "yourdfpy": "model"}
+EXTRAS = {"numpy": "model", "pinocchio": "dynamics", "trimesh": "model", "yourdfpy": "model"}
 
 
 @cache

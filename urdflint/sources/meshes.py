@@ -19,6 +19,7 @@ from urdflint.model.finding import Severity
 from urdflint.model.geometry import Shape, read_shape
 from urdflint.model.structure import q
 from urdflint.model.values import has_xacro
+from urdflint.sources.case import case_variant
 from urdflint.sources.mesh_cache import MeshCache, MeshInfo
 from urdflint.sources.resolve import NO_PACKAGE_PATH, SCHEME_RE
 
@@ -204,6 +205,9 @@ def unresolved(doc: Document, refs: list[FileRef], noun: str) -> Iterator[FilePr
         problem = answer.problem or "the file was not found"
         if problem.startswith("no file at"):
             last = Path(answer.tried[-1]) if answer.tried else None
+            wanted = answer.path or last
+            if wanted is not None and case_variant(wanted.absolute()) is not None:
+                continue  # C016 reports a name in another letter case
             hint = nearby(answer.path or last)
             yield FileProblem(ref.element, f"{ref.what} is missing: {problem}{hint}")
         elif problem.startswith("package ") and configured:

@@ -1,0 +1,308 @@
+"""Collision geometry of non-adjacent links that overlaps at one configuration (C013).
+
+Forward kinematics of the link frames at the zero configuration, or at ``expect.q``
+(``--q JOINT=VALUE``; a mimic joint follows its leader: ``multiplier * leader + offset``);
+every ``<collision>`` placed in the world (primitives as written, meshes as their convex
+hull, read once through the run's mesh cache); a broad phase over the world bounding
+boxes; the depth of each remaining pair from :mod:`urdflint.sources.self_collision_depth`.
+
+Pairs are links that are not welded into one rigid body by ``fixed`` joints and are not
+the parent and child of one joint. ``body_adjacent`` marks the pairs whose rigid bodies
+are parent and child once fixed joints are fused (MuJoCo's ``fusestatic``, Gazebo's
+lumping, the MoveIt Setup Assistant's "Adjacent"): those targets never collide them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from urdflint.model.geometry import Shape, read_shape
+from urdflint.model.values import vector
+from urdflint.sources.self_collision_depth import Placed, depth_function
+
+if TYPE_CHECKING:
+    from urdflint.model.document import Document, Joint
+
+MOVING = ("revolute", "continuous", "prismatic")
+
+
+@dataclass(frozen=True, slots=True)
+class Overlap:
+    """Two links whose collision geometry interpenetrates by ``depth`` metres.
+
+    ``first``/``second`` are in document order; ``element`` is the second link's
+    ``<collision>`` of the deepest contact. ``approximate``: a bounding box stood in for a
+    shape (no coal); ``mesh``: a convex hull stood in for a mesh.
+    """
+
+    first: str
+    second: str
+    depth: float
+    element: Any
+    body_adjacent: bool
+    approximate: bool
+    mesh: bool
+    root: bool = False  # one of the two rigid bodies is a root's (MuJoCo welds it to the world)
+
+
+# -- configuration and forward kinematics ---------------------------------------------------
+
+
+def joint_values(doc: Document) -> dict[str, float]:
+    """Joint positions of ``expect.q`` (unknown and non-moving names are left out), with
+    every mimic joint following its leader."""
+    requested = {
+        name: value
+        for name, value in dict(doc.settings.expect.q).items()
+        if name in doc.joint_map and doc.joint_map[name].type in MOVING
+    }
+    mimics: dict[str, tuple[str, float, float]] = {}
+    for joint in doc.joints:
+        mimic = joint.find("mimic")
+        if joint.name is None or mimic is None or not mimic.get("joint"):
+            continue
+        multiplier = _number(mimic.get("multiplier"), 1.0)
+        offset = _number(mimic.get("offset"), 0.0)
+        mimics[joint.name] = (str(mimic.get("joint")), multiplier, offset)
+
+    def position(name: str, depth: int = 0) -> float:
+        if name in mimics and depth < 64:
+            leader, multiplier, offset = mimics[name]
+            return multiplier * position(leader, depth + 1) + offset
+        return requested.get(name, 0.0)
+
+    values = {k: v for k, v in requested.items() if k not in mimics}
+    values.update({name: position(name) for name in mimics})
+    return values
+
+
+def _number(text: str | None, default: float) -> float:
+    try:
+        value = float(text) if text is not None else default
+    except ValueError:
+        return default
+    return value if math.isfinite(value) else default
+
+
+def transform(xyz: tuple[float, ...], rpy: tuple[float, ...]) -> np.ndarray:
+    """The 4x4 transform of a URDF ``<origin>`` (fixed-axis roll, pitch, yaw)."""
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(r),
+        math.sin(r),
+        math.cos(p),
+        math.sin(p),
+        math.cos(y),
+        math.sin(y),
+    )
+    matrix = np.eye(4)
+    matrix[:3, :3] = [
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ]
+    matrix[:3, 3] = xyz
+    return matrix
+
+
+def _motion(joint: Joint, value: float) -> np.ndarray:
+    """The joint's own motion at ``value``: a rotation or a translation along its axis."""
+    matrix = np.eye(4)
+    if value == 0.0 or joint.type not in MOVING:
+        return matrix
+    axis = np.array(vector(joint.find("axis"), "xyz", 3, (1.0, 0.0, 0.0)) or (0.0, 0.0, 0.0))
+    norm = float(np.linalg.norm(axis))
+    if not norm > 0 or not math.isfinite(norm):
+        return matrix
+    axis = axis / norm
+    if joint.type == "prismatic":
+        matrix[:3, 3] = axis * value
+        return matrix
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    matrix[:3, :3] = np.eye(3) + math.sin(value) * k + (1 - math.cos(value)) * (k @ k)
+    return matrix
+
+
+def link_poses(doc: Document, values: dict[str, float]) -> dict[str, np.ndarray]:
+    """World transform of every link reachable from a root (each root at the origin)."""
+    graph = doc.graph
+    poses: dict[str, np.ndarray] = {}
+    stack = [(root, np.eye(4)) for root in graph.roots]
+    while stack:
+        name, pose = stack.pop()
+        if name in poses:
+            continue  # a kinematic loop (S005): the first path wins
+        poses[name] = pose
+        for joint in graph.child_joints.get(name, []):
+            origin = joint.find("origin")
+            xyz = vector(origin, "xyz", 3, (0.0, 0.0, 0.0)) or (0.0, 0.0, 0.0)
+            rpy = vector(origin, "rpy", 3, (0.0, 0.0, 0.0)) or (0.0, 0.0, 0.0)
+            local = transform(xyz, rpy) @ _motion(joint, values.get(joint.name or "", 0.0))
+            if joint.child is not None and np.isfinite(local).all():
+                stack.append((joint.child, pose @ local))
+    return poses
+
+
+# -- shapes in the world -------------------------------------------------------------------
+
+
+def place(doc: Document, poses: dict[str, np.ndarray], hulls: dict[Any, Any]) -> list[Placed]:
+    """Every readable ``<collision>`` of the posed links, in document order."""
+    found: list[Placed] = []
+    for link in doc.links:
+        pose = poses.get(link.name or "")
+        if pose is None or doc.link_map.get(link.name or "") is not link:
+            continue
+        for owner in link.collisions:
+            shape = read_shape(owner)
+            if shape is None or not shape.valid:
+                continue  # C003 reports invalid shapes
+            frame = pose @ transform(shape.xyz, shape.rpy)
+            placed = _placed(doc, str(link.name), shape, frame, hulls)
+            if placed is not None and np.isfinite(placed.center).all():
+                found.append(placed)
+    return found
+
+
+def _placed(
+    doc: Document, link: str, shape: Shape, frame: np.ndarray, hulls: dict[Any, Any]
+) -> Placed | None:
+    rotation, center = frame[:3, :3], frame[:3, 3]
+    kind = shape.kind
+    if kind == "box" and shape.size is not None:
+        half = np.array(shape.size) / 2.0
+        return Placed(link, shape.owner, kind, rotation, center, half)
+    if kind == "sphere" and shape.radius is not None:
+        r = shape.radius
+        return Placed(link, shape.owner, kind, rotation, center, np.full(3, r), radius=r)
+    if kind in ("cylinder", "capsule") and shape.radius and shape.length:
+        r, length = shape.radius, shape.length
+        reach = length / 2.0 + (r if kind == "capsule" else 0.0)
+        half = np.array([r, r, reach])
+        return Placed(link, shape.owner, kind, rotation, center, half, r, length)
+    hull = _hull(doc, link, shape, hulls) if kind == "mesh" else None
+    if hull is None:
+        return None
+    key, points = hull
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    return Placed(
+        link, shape.owner, kind, rotation, center, (hi - lo) / 2.0, points=points,
+        box_center=(hi + lo) / 2.0, key=key,
+    )  # fmt: skip
+
+
+def _hull(
+    doc: Document, link: str, shape: Shape, hulls: dict[Any, Any]
+) -> tuple[Any, np.ndarray] | None:
+    """The convex hull's vertices of a mesh (after scale), read once per file and scale;
+    ``None`` when it cannot be read (C004-C006 report why), or trimesh is not installed."""
+    from urdflint.model.inertia import meshes_readable
+    from urdflint.sources.mesh_cache import quiet_numpy
+    from urdflint.sources.meshes import MeshRef, load, suspicious_size
+
+    if not meshes_readable():
+        return None
+    info = load(doc, MeshRef(link, "collision", shape))
+    if info is None or not info.ok or suspicious_size(info):
+        return None
+    key = (info.path, shape.scale)
+    if key not in hulls:
+        with quiet_numpy():
+            try:
+                points = np.asarray(info._mesh.convex_hull.vertices, dtype=float)
+            except Exception:  # qhull on flat or degenerate input: the vertices themselves
+                points = np.asarray(info._mesh.vertices, dtype=float)
+        hulls[key] = points if len(points) else None
+    found = hulls[key]
+    return None if found is None else (key, found)
+
+
+# -- pairs ------------------------------------------------------------------------------------
+
+
+def bodies(doc: Document) -> dict[str, int]:
+    """Each link's rigid body: links joined by ``fixed`` joints share a number."""
+    parent = {name: name for name in doc.link_map}
+
+    def find(name: str) -> str:
+        while parent[name] != name:
+            parent[name] = parent[parent[name]]
+            name = parent[name]
+        return name
+
+    for joint in doc.joints:
+        if joint.type == "fixed" and joint.parent in parent and joint.child in parent:
+            parent[find(str(joint.child))] = find(str(joint.parent))
+    numbers: dict[str, int] = {}
+    return {name: numbers.setdefault(find(name), len(numbers)) for name in doc.link_map}
+
+
+def exempt_pairs(
+    doc: Document, body: dict[str, int]
+) -> tuple[set[frozenset[str]], set[frozenset[int]]]:
+    """Link pairs of one joint, and body pairs of one (moving) joint."""
+    links: set[frozenset[str]] = set()
+    joined: set[frozenset[int]] = set()
+    for joint in doc.joints:
+        if joint.parent in body and joint.child in body:
+            links.add(frozenset((str(joint.parent), str(joint.child))))
+            joined.add(frozenset((body[str(joint.parent)], body[str(joint.child)])))
+    return links, joined
+
+
+def candidates(shapes: list[Placed], margin: float) -> list[tuple[int, int]]:
+    """Index pairs whose world boxes overlap by ``margin`` or more on every axis (sweep and
+    prune along x): a pair that interpenetrates by ``margin`` has such boxes."""
+    if not shapes:
+        return []
+    boxes = [s.world_box() for s in shapes]
+    lo = np.array([b[0] for b in boxes])
+    hi = np.array([b[1] for b in boxes])
+    order = np.argsort(lo[:, 0])
+    found: list[tuple[int, int]] = []
+    active: list[int] = []
+    for i in order:
+        active = [j for j in active if hi[j, 0] - lo[i, 0] >= margin]
+        for j in active:
+            reach = np.minimum(hi[i], hi[j]) - np.maximum(lo[i], lo[j])
+            if (reach >= margin).all():
+                found.append((min(i, j), max(i, j)))
+        active.append(int(i))
+    return sorted(found)
+
+
+def overlaps(
+    doc: Document, min_depth: float, disabled: set[frozenset[str]]
+) -> tuple[list[Overlap], str]:
+    """The overlapping link pairs (deepest contact per pair) and the method used."""
+    poses = link_poses(doc, joint_values(doc))
+    shapes = place(doc, poses, {})
+    body = bodies(doc)
+    one_joint, joined = exempt_pairs(doc, body)
+    depth_of, method = depth_function()
+    order = {name: i for i, name in enumerate(doc.link_map)}
+    roots = {body[name] for name in doc.graph.roots}
+    best: dict[frozenset[str], Overlap] = {}
+    for i, j in candidates(shapes, min_depth):
+        a, b = sorted((shapes[i], shapes[j]), key=lambda s: order[s.link])
+        pair = frozenset((a.link, b.link))
+        if (
+            a.link == b.link
+            or body[a.link] == body[b.link]
+            or pair in one_joint
+            or pair in disabled
+        ):
+            continue
+        depth, approximate = depth_of(a, b)
+        if depth < min_depth or (pair in best and best[pair].depth >= depth):
+            continue
+        mesh = "mesh" in (a.kind, b.kind)
+        adjacent = frozenset((body[a.link], body[b.link])) in joined
+        root = bool({body[a.link], body[b.link]} & roots)
+        best[pair] = Overlap(a.link, b.link, depth, b.owner, adjacent, approximate, mesh, root)
+    found = sorted(best.values(), key=lambda o: (order[o.second], order[o.first]))
+    return found, method
