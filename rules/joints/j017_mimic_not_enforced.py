@@ -4,7 +4,8 @@
 Reports each valid `<mimic>` (a revolute, continuous or prismatic joint following another
 one; J014 and S008 report the invalid ones) with what each selected target does with it.
 Its severity is the worst consequence on the selected targets: a **warning** where a
-simulator drops the relation (Gazebo Classic, Gazebo Sim and PyBullet), info where the
+simulator drops the relation (Gazebo Classic and Gazebo Sim when the file has `<gazebo>`
+blocks, info in a file without any, like G002; PyBullet), info where the
 consumer only needs to be told (Pinocchio builds the follower as a joint of its own unless
 asked for mimic support), and nothing to report when every target enforces it (MuJoCo,
 Drake, Isaac Sim, ROS).
@@ -72,6 +73,12 @@ MIMIC: dict[str, Effect] = {
     ),
     "ros": kept("robot_state_publisher and MoveIt apply it", Severity.INFO),
 }
+# A file without any <gazebo> block is most likely not (yet) meant for Gazebo: info there.
+NO_GAZEBO_BLOCKS: dict[str, Effect] = {
+    **MIMIC,
+    "gazebo-classic": ignored(DROPPED_BY_SDFORMAT + "; add a mimic plugin", Severity.INFO),
+    "gz-sim": ignored(DROPPED_BY_SDFORMAT + " (Fortress)", Severity.INFO),
+}
 BY_PLUGIN = kept("a Gazebo plugin or transmission drives the follower", Severity.INFO)
 
 
@@ -93,7 +100,7 @@ def check(doc: Document) -> Iterator[Hit]:
         leader = doc.joint_map.get((mimic.get("joint") or "").strip())
         if leader is None or leader is joint or leader.type not in SINGLE:
             continue  # S008, J014
-        effects: Mapping[str, Effect] = MIMIC
+        effects: Mapping[str, Effect] = MIMIC if doc.gazebo else NO_GAZEBO_BLOCKS
         if joint.name in enforced:
             effects = {**MIMIC, "gazebo-classic": BY_PLUGIN, "gz-sim": BY_PLUGIN}
         names = [
