@@ -128,6 +128,24 @@ def test_a_folder_yields_entry_files_not_libraries(ws: Path) -> None:
     ]
 
 
+def test_a_moveit_srdf_in_xacro_is_not_an_entry(tmp_path: Path) -> None:
+    """An SRDF is read with its URDF by the M rules, never linted as a URDF of its own."""
+    srdf = (
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm">\n'
+        '  <xacro:arg name="prefix" default=""/>\n'
+        '  <group name="arm"><chain base_link="base" tip_link="tool"/></group>\n'
+        '  <disable_collisions link1="base" link2="tool" reason="Never"/>\n</robot>\n'
+    )
+    (tmp_path / "arm.srdf.xacro").write_text(srdf)
+    (tmp_path / "arm_moveit.xacro").write_text(srdf)  # SRDF content without the suffix
+    robot = (
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm"><link name="base"/></robot>'
+    )
+    (tmp_path / "arm.urdf.xacro").write_text(robot)
+    files, errors = discovery.collect([str(tmp_path)], {})
+    assert errors == [] and [Path(f).name for f in files] == ["arm.urdf.xacro"]
+
+
 def test_entries_match_a_hand_made_list_on_real_packages() -> None:
     wanted = {e["entry"] for e in json.loads((PACKAGES / "entries.json").read_text())}
     files, _ = discovery.collect([str(PACKAGES)], workspace.discover([PACKAGES]))

@@ -25,6 +25,10 @@ INCLUDE_RE = re.compile(rb"<[\w.-]*:?include\b[^>]*?\bfilename\s*=\s*(?:\"([^\"]
 FIND_RE = re.compile(r"^\$\((?:find|find-pkg-share)\s+([^)\s]+)\)(.*)$")
 EXPR_RE = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
 DEFINITIONS = frozenset({"macro", "property", "arg", "include"})
+SRDF_SUFFIXES = (".srdf.xacro", ".srdf.xml.xacro")
+SRDF_TAGS = frozenset(
+    {"group", "group_state", "end_effector", "virtual_joint", "passive_joint", "disable_collisions"}
+)
 CONDITIONS = frozenset({"if", "unless"})
 
 
@@ -61,8 +65,8 @@ def _below(folder: Path) -> tuple[list[Path], list[Path]]:
             lower = name.lower()
             if lower.endswith(".urdf"):
                 urdfs.append(Path(dirpath) / name)
-            elif lower.endswith(".xacro"):
-                xacros.append(Path(dirpath) / name)
+            elif lower.endswith(".xacro") and not lower.endswith(SRDF_SUFFIXES):
+                xacros.append(Path(dirpath) / name)  # an SRDF is read beside its URDF
     return urdfs, xacros
 
 
@@ -137,6 +141,8 @@ def is_robot(data: bytes, includes: bool = False) -> bool:
         return True
     if includes and any(etree.QName(el).localname == "macro" for el in root.iter("{*}macro")):
         includes = False
+    if any(isinstance(el.tag, str) and etree.QName(el).localname in SRDF_TAGS for el in root):
+        return False  # a MoveIt SRDF written in xacro: the M rules read it with its URDF
     return _has_content(root, includes)
 
 
