@@ -308,3 +308,44 @@ def test_a_suppression_inside_a_macro_works_and_an_unused_one_is_shown_there(ws:
     [unused] = json.loads(proc.stdout)["findings"]
     assert unused["code"] == "U002"
     assert (unused["path"], unused["line"]) == (str(finger), line_of(finger, "ignore[I002]"))
+
+
+def test_an_include_of_the_installed_layout_is_read_from_the_source_tree(tmp_path: Path) -> None:
+    """ros2_control_demos: `$(find pkg)/ros2_control/x.xacro` is installed from
+    `description/ros2_control/` by CMake; before a build the source file is read."""
+    from urdflint.engine import config, linter
+
+    package = tmp_path / "demo_pkg"
+    (package / "description" / "ros2_control").mkdir(parents=True)
+    (package / "description" / "urdf").mkdir()
+    (package / "package.xml").write_text(
+        '<package format="3"><name>demo_pkg</name><version>1.0.0</version>'
+        "<description>d</description><maintainer email='a@b.c'>a</maintainer>"
+        "<license>BSD</license></package>"
+    )
+    (package / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.16)\nproject(demo_pkg)\n"
+        "# install(DIRECTORY nowhere DESTINATION share/${PROJECT_NAME})\n"
+        "install(\n  DIRECTORY description/ros2_control description/urdf\n"
+        "  DESTINATION share/${PROJECT_NAME}\n)\n"
+    )
+    (package / "description" / "ros2_control" / "bot.ros2_control.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="bot_ros2_control">\n'
+        '    <ros2_control name="bot" type="system">\n'
+        "      <hardware><plugin>mock_components/GenericSystem</plugin></hardware>\n"
+        '      <joint name="elbow"><command_interface name="position"/></joint>\n'
+        "    </ros2_control>\n  </xacro:macro>\n</robot>\n"
+    )
+    entry = package / "description" / "urdf" / "bot.urdf.xacro"
+    entry.write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="bot">\n'
+        '  <xacro:include filename="$(find demo_pkg)/ros2_control/bot.ros2_control.xacro"/>\n'
+        '  <link name="base"/>\n  <xacro:bot_ros2_control/>\n</robot>\n'
+    )
+    settings = config.Settings(package_paths={"demo_pkg": package})
+    found = linter.lint_path(entry, str(entry), settings).findings
+    assert "X010" not in {f.code for f in found}
+    (r004,) = [f for f in found if f.code == "R004"]  # 'elbow' is no joint of the URDF
+    assert r004.path.endswith("description/ros2_control/bot.ros2_control.xacro")
+    assert r004.line == 5

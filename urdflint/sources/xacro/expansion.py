@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from urdflint.model.document import MAX_BYTES, XmlProblem
+from urdflint.sources import install_layout
 from urdflint.sources.xacro.guards import (
     ConfinedGlob,
     confined_eval,
@@ -216,6 +217,8 @@ class Expansion(Problems):
         if inp is not None or filename is None:
             raise TypeError("urdflint's xacro parse only reads files")
         full = os.path.abspath(os.path.join(x.root_dir, filename))
+        if not os.path.exists(full):  # installed there by CMake: read it in the source tree
+            full = install_layout.source_file(full) or full
         is_main = full == self.main
         try:
             data = self._read(full)
@@ -252,6 +255,8 @@ class Expansion(Problems):
     def _open(self, file: Any, mode: str = "r", *args: Any, **kwargs: Any) -> Any:
         """``open`` for ``xacro.load_yaml``: confined and size-limited like includes."""
         full = os.path.abspath(os.fspath(file))
+        if not os.path.exists(full):
+            full = install_layout.source_file(full) or full
         self.last_yaml = full
         data = self._read(full)
         if "b" in mode:
