@@ -4,8 +4,10 @@
 Builds the key of every interface the top-level `<ros2_control>` blocks declare,
 `<component name>/<interface name>` as ros2_control does (joints, sensors and GPIOs
 share one namespace), separately for command and state interfaces, and reports the
-second declaration of a key. An error when the two are in different blocks, a
-warning when both are in the same block. A joint listed in two blocks with
+second declaration of a key. An error when the two are in different blocks (one
+finding per pair of blocks, on the first repeated interface, counting and naming the
+others: a MoveIt config that adds a `FakeSystem` block beside the description's own
+block repeats every interface), a warning when both are in the same block. A joint listed in two blocks with
 different interfaces (state in one, command in the other) is legal and not
 reported.
 
@@ -46,6 +48,7 @@ from urdflint.model.structure import written_at
 )
 def check(doc: Document) -> Iterator[Hit]:
     seen: dict[tuple[str, str], tuple[R.Block, R.Interface]] = {}
+    shared: dict[tuple[int, int], list[tuple[R.Interface, str, R.Block, R.Interface]]] = {}
     for block in R.blocks(doc):
         for component in block.components:
             if component.name is None:
@@ -58,18 +61,36 @@ def check(doc: Document) -> Iterator[Hit]:
                 if first[1] is interface:
                     continue
                 other, earlier = first
-                where = written_at(doc, earlier.element)
                 if other is block:
                     yield Hit(
                         interface.element,
                         f"{interface.kind} interface {key!r} is declared twice in {block.label} "
-                        f"(first at {where})",
+                        f"(first at {written_at(doc, earlier.element)})",
                         severity=Severity.WARNING,
                     )
-                else:
-                    yield Hit(
-                        interface.element,
-                        f"{interface.kind} interface {key!r} of {block.label} is also declared "
-                        f"by {other.label} (at {where}): the resource manager refuses a second "
-                        "interface with the same name",
-                    )
+                else:  # one finding per pair of blocks, on the first repeated interface
+                    pair = shared.setdefault((id(block), id(other)), [])
+                    pair.append((interface, key, other, earlier))
+    for repeated in shared.values():
+        yield _across(doc, repeated)
+
+
+def _across(doc: Document, repeated: list[tuple[R.Interface, str, R.Block, R.Interface]]) -> Hit:
+    interface, key, other, earlier = repeated[0]
+    block_label = next(b.label for b in R.blocks(doc) if interface in _interfaces(b))
+    where = written_at(doc, earlier.element)
+    if len(repeated) == 1:
+        what = f"{interface.kind} interface {key!r} of {block_label} is"
+    else:
+        keys = [f"{i.kind} {k}" for i, k, _, _ in repeated]
+        listed = ", ".join(keys[:3]) + (f" and {len(keys) - 3} more" if len(keys) > 3 else "")
+        what = f"{len(repeated)} interfaces of {block_label} ({listed}) are"
+    return Hit(
+        interface.element,
+        f"{what} also declared by {other.label} (first at {where}): the resource manager "
+        "refuses a second interface with the same name",
+    )
+
+
+def _interfaces(block: R.Block) -> list[R.Interface]:
+    return [i for c in block.components for i in c.interfaces]
