@@ -16,6 +16,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
+from weakref import WeakKeyDictionary
 
 from lxml import etree
 
@@ -173,8 +174,20 @@ def block_keys(doc: Document) -> Iterator[tuple[etree._Element, frozenset[str], 
 
 
 def blocks_for(doc: Document, name: str) -> list[etree._Element]:
-    """The ``<gazebo reference="name">`` blocks."""
-    return [g for g in doc.gazebo if g.get("reference") == name]
+    """The ``<gazebo reference="name">`` blocks (indexed once per document: a rule that asks
+    for every link stays linear in the number of blocks)."""
+    index = _BY_REFERENCE.get(doc)
+    if index is None:
+        index = {}
+        for block in doc.gazebo:
+            index.setdefault(block.get("reference"), []).append(block)
+        _BY_REFERENCE[doc] = index
+    return list(index.get(name, ()))
+
+
+_BY_REFERENCE: WeakKeyDictionary[Document, dict[str | None, list[etree._Element]]] = (
+    WeakKeyDictionary()
+)
 
 
 def value_of(el: etree._Element) -> str:

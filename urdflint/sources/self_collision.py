@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from urdflint.model.document import Document, Joint
 
 MOVING = ("revolute", "continuous", "prismatic")
+MAX_PAIRS = 5000  # candidate pairs measured exactly (a real robot has tens to hundreds)
 
 
 @dataclass(frozen=True, slots=True)
@@ -287,7 +288,11 @@ def overlaps(
     order = {name: i for i, name in enumerate(doc.link_map)}
     roots = {body[name] for name in doc.graph.roots}
     best: dict[frozenset[str], Overlap] = {}
-    for i, j in candidates(shapes, min_depth):
+    pairs = list(candidates(shapes, min_depth))
+    if len(pairs) > MAX_PAIRS:  # links piled up at the pose: bound the narrow phase
+        method += f"; {len(pairs)} candidate pairs, the first {MAX_PAIRS} measured"
+        pairs = pairs[:MAX_PAIRS]
+    for i, j in pairs:
         a, b = sorted((shapes[i], shapes[j]), key=lambda s: order[s.link])
         pair = frozenset((a.link, b.link))
         if (
