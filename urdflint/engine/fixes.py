@@ -12,6 +12,7 @@ import os
 import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -174,8 +175,14 @@ def _literal(raw: bytes) -> None:
         raise Unavailable(f"the value is computed by xacro ({text.strip()}): edit it by hand")
 
 
+@lru_cache(maxsize=16)
+def _lines(data: bytes) -> Lines:
+    """Line starts of a file, computed once per file content (bytes keep their hash)."""
+    return Lines(data)
+
+
 def edit(place: Place, start: int, end: int, text: str) -> Edit:
-    lines = Lines(place.data)
+    lines = _lines(place.data)
     line, column = lines.position(start)
     end_line, end_column = lines.position(end)
     return Edit(place.path, start, end, text, line, column, end_line, end_column)

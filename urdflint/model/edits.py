@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import TYPE_CHECKING, Literal
 
 if TYPE_CHECKING:
@@ -219,6 +220,7 @@ def indentation(data: bytes, start: int) -> bytes:
     return prefix if prefix.strip() == b"" else b""
 
 
+@lru_cache(maxsize=16)
 def newline(data: bytes) -> str:
-    """The file's line ending."""
+    """The file's line ending (one scan per file: bytes keep their hash)."""
     return "\r\n" if b"\r\n" in data else "\n"

@@ -257,17 +257,19 @@ def exempt_pairs(
 
 def candidates(shapes: list[Placed], margin: float) -> list[tuple[int, int]]:
     """Index pairs whose world boxes overlap by ``margin`` or more on every axis (sweep and
-    prune along x): a pair that interpenetrates by ``margin`` has such boxes."""
+    prune along the axis the boxes spread most on, so a long chain stays near linear): a
+    pair that interpenetrates by ``margin`` has such boxes."""
     if not shapes:
         return []
     boxes = [s.world_box() for s in shapes]
     lo = np.array([b[0] for b in boxes])
     hi = np.array([b[1] for b in boxes])
-    order = np.argsort(lo[:, 0])
+    axis = int(np.argmax(np.ptp(lo + hi, axis=0)))
+    order = np.argsort(lo[:, axis])
     found: list[tuple[int, int]] = []
     active: list[int] = []
     for i in order:
-        active = [j for j in active if hi[j, 0] - lo[i, 0] >= margin]
+        active = [j for j in active if hi[j, axis] - lo[i, axis] >= margin]
         for j in active:
             reach = np.minimum(hi[i], hi[j]) - np.maximum(lo[i], lo[j])
             if (reach >= margin).all():
