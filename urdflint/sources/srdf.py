@@ -221,9 +221,9 @@ def _robot_name(path: Path, doc: Document) -> str | None:
 
 def _setup_assistant(doc: Document, real: Path, package: Path | None) -> Path | None:
     """The SRDF of a MoveIt config package whose ``.setup_assistant`` names this URDF."""
-    folders: list[Path] = []
-    if package is not None:
-        folders += [package, *(p for p in _subdirs(package.parent) if p != package)]
+    if package is None:
+        return None  # a .setup_assistant names its URDF by package: this file is in none
+    folders = [package, *(p for p in _subdirs(package.parent) if p != package)]
     with contextlib.suppress(OSError):
         folders += list(doc.context.workspace.values())
     target = _resolved(real)
