@@ -220,8 +220,11 @@ def locate(doc: Document, element: etree._Element) -> Place:
 
 
 def forget_files() -> None:
-    """Drop the cached source files (between fix rounds: they changed)."""
+    """Drop the cached source files and their line indexes (between fix rounds: they
+    changed; after the last one, so a long-running service keeps no file contents)."""
     _FILES.clear()
+    _lines.cache_clear()
+    E.newline.cache_clear()
 
 
 def apply_all(
@@ -278,4 +281,5 @@ def rounds(
             write(path, new)
         forget_files()
         result = lint()
+    forget_files()
     return result, originals, applied

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import os
 import re
-from functools import cache
+from functools import lru_cache
 from pathlib import Path
 
 MAX_CMAKE_BYTES = 2**20
@@ -43,7 +43,7 @@ def source_file(path: str) -> str | None:
     return None
 
 
-@cache
+@lru_cache(maxsize=64)  # bounded: the service sees a new job folder per request
 def _rules(package: str) -> tuple[tuple[str, str], ...]:
     """``(installed prefix, source folder)`` pairs of the package's install(DIRECTORY) rules
     into its share folder, relative to the package (``("ros2_control/", "description/
