@@ -1,20 +1,22 @@
 """The rule catalogue: one family per package, one module per rule.
 
-Importing this package registers every rule (explicit imports, greppable).
+Importing a family package registers its rules (explicit imports, greppable). The engine
+imports only the families a run selects (``registry.load_rules``), so ``--select X`` never
+pays for the Gazebo or geometry rules; ``PACKAGES`` maps each family letter to its package.
 """
 
-from urdflint.rules import (  # noqa: F401
-    conventions,
-    document,
-    engines,
-    gazebo,
-    geometry,
-    inertial,
-    joints,
-    meta,
-    moveit,
-    physics,
-    ros2_control,
-    structure,
-    transmissions,
-)
+PACKAGES: dict[str, str] = {
+    "X": "document",
+    "S": "structure",
+    "I": "inertial",
+    "C": "geometry",
+    "G": "gazebo",
+    "J": "joints",
+    "T": "transmissions",
+    "R": "ros2_control",
+    "M": "moveit",
+    "N": "conventions",
+    "P": "physics",
+    "E": "engines",
+    "U": "meta",
+}

@@ -11,17 +11,10 @@ from pathlib import Path
 from typing import Any
 
 from urdflint import __version__
-from urdflint.cli import fix, package
-from urdflint.cli.common import (
-    EXIT_ERROR,
-    EXIT_FINDINGS,
-    EXIT_OK,
-    UsageError,
-    gate_options,
-    model_options,
-    run_context,
-)
-from urdflint.engine import config, instances, matrix, options
+from urdflint.cli import fix
+from urdflint.cli.check_options import add_parser
+from urdflint.cli.common import EXIT_ERROR, EXIT_FINDINGS, EXIT_OK, UsageError, run_context
+from urdflint.engine import config, instances
 from urdflint.engine.options import SettingsFinder
 from urdflint.model import targets
 from urdflint.model.finding import Finding
@@ -29,142 +22,7 @@ from urdflint.outputs import formatters, report
 from urdflint.sources.discovery import SKIP_DIRS, as_entries, collect
 
 FAIL_LEVEL = report.FAIL_LEVEL
-
-
-def _codes(value: str) -> list[str]:
-    return [part.strip() for part in value.split(",") if part.strip()]
-
-
-HELP = {
-    "check": "lint files and folders (folders: every *.urdf below)",
-    "fix": "apply the automatic fixes, then report what is left (check --fix)",
-}
-
-
-def add_parser(sub: Any) -> None:
-    for name, text in HELP.items():
-        _options(sub.add_parser(name, help=text))
-
-
-def _options(check: argparse.ArgumentParser) -> None:
-    check.add_argument("paths", nargs="+", metavar="PATH", help="file, folder, or - for stdin")
-    check.add_argument(
-        "--format",
-        default="auto",
-        choices=("auto", *formatters.NAMES),
-        help="output format; auto = github when GITHUB_ACTIONS is set, else text",
-    )
-    check.add_argument(
-        "--select",
-        action="append",
-        type=_codes,
-        default=[],
-        metavar="CODES",
-        help="run only these rules (codes, names or family letters, comma-separated)",
-    )
-    check.add_argument(
-        "--ignore",
-        action="append",
-        type=_codes,
-        default=[],
-        metavar="CODES",
-        help="do not run these rules (added to the configured ignores)",
-    )
-    check.add_argument(
-        "--fail-on",
-        choices=config.FAIL_ON,
-        default=None,
-        help="lowest severity that makes the exit code 1 (default: error)",
-    )
-    check.add_argument("--exit-zero", action="store_true", help="same as --fail-on never")
-    check.add_argument(
-        "--show-info",
-        action="store_true",
-        help="list info findings in the text output (default: one summary line; "
-        "--fail-on info and the machine formats always list them)",
-    )
-    check.add_argument(
-        "--target",
-        action="append",
-        type=options.target_list,
-        default=[],
-        metavar="TARGETS",
-        help="consumers the model is meant for: "
-        + ", ".join((*targets.TARGETS, targets.ALL))
-        + " (comma-separated or repeated; default gazebo-classic; all: every one)",
-    )
-    package.add_options(check)
-    check.add_argument(
-        "--matrix",
-        action="store_true",
-        help="show what each target will do with the model: loads, loads with changes, "
-        "refused or crashes, and the findings that decide it (with --confirm: what the "
-        "engines did)",
-    )
-    _more_options(check)
-    fix.add_options(check)
-
-
-def _more_options(check: argparse.ArgumentParser) -> None:
-    check.add_argument(
-        "--config",
-        type=Path,
-        metavar="FILE",
-        help="use this configuration file instead of discovering one",
-    )
-    check.add_argument("--isolated", action="store_true", help="ignore every configuration file")
-    check.add_argument(
-        "--stdin-filename",
-        default="<stdin>",
-        metavar="NAME",
-        help="path to show (and to match per-file ignores) for input read from -",
-    )
-    model_options(check)
-    check.add_argument(
-        "--expect-mass",
-        metavar="KG[±TOL]",
-        type=options.expect_mass,
-        help="fail (P003) unless the total mass is KG within ±TOL kg or ±N%% "
-        "(default tolerance: expect.mass-tolerance, 2%%)",
-    )
-    check.add_argument(
-        "--expect-com",
-        metavar="X,Y,Z[±TOL]",
-        type=options.expect_com,
-        help="fail (P004) unless the centre of mass, in the root link frame, is X,Y,Z "
-        "within TOL metres (default: expect.com-tolerance, 0.01)",
-    )
-    check.add_argument(
-        "--confirm",
-        action="append",
-        type=options.engine_list,
-        default=[],
-        metavar="ENGINES",
-        help="also load the model in these engines (mujoco, pybullet, drake, pinocchio, "
-        "sdformat or all; "
-        "comma-separated) and report what they refuse, drop, warn about or crash on (E rules)",
-    )
-    check.add_argument(
-        "--emit-expanded",
-        type=Path,
-        metavar="FILE",
-        help="write the expanded URDF of a single xacro input to FILE",
-    )
-    check.add_argument(
-        "--output",
-        type=Path,
-        metavar="FILE",
-        help="write the --format output to FILE instead of stdout",
-    )
-    check.add_argument(
-        "--report",
-        action="append",
-        default=[],
-        metavar="FORMAT:PATH",
-        help="also write FORMAT (" + ", ".join(formatters.NAMES) + ") to PATH (repeatable), "
-        "e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
-    )
-    gate_options(check)
+__all__ = ["add_parser", "run"]
 
 
 @dataclass
@@ -230,40 +88,41 @@ def run(args: argparse.Namespace) -> int:
 def _lint_files(
     args: argparse.Namespace, files: list[str], finder: SettingsFinder, outcome: Run, context: Any
 ) -> None:
-    from urdflint.engine import linter
+    from urdflint.cli import parallel
 
-    for name in files:
-        is_stdin = name == "-"
-        shown = args.stdin_filename if is_stdin else name
-        try:
-            settings = finder.for_folder(Path.cwd() if is_stdin else Path(name).parent)
-        except config.ConfigError as exc:
-            raise UsageError(str(exc)) from None
-        if args.matrix and not args.target and settings.targets == targets.DEFAULT_TARGETS:
-            settings = replace(settings, targets=tuple(targets.TARGETS))  # every row
-        try:
-            if is_stdin:
-                data = sys.stdin.buffer.read()
-                result = linter.lint_bytes(data, shown, settings, context, Path.cwd())
-            else:
-                result = linter.lint_path(Path(name), shown, settings, context)
-        except OSError as exc:
-            outcome.errors.append(f"{shown}: cannot read: {exc.strerror or exc}")
+    tasks = [_task(args, name, finder) for name in files]
+    flags = parallel.Flags(args.matrix, args.emit_expanded)
+    jobs = parallel.jobs_for(args.jobs, len(tasks))
+    for task, done in zip(tasks, parallel.run(tasks, context, flags, jobs), strict=True):
+        if done.error is not None:
+            outcome.errors.append(done.error)
             continue
-        outcome.checked.append(shown)
-        outcome.ran[shown] = result.ran
-        outcome.findings.extend(result.findings)
-        outcome.skipped.update(result.skipped)
-        outcome.crashed = outcome.crashed or result.crashed
-        outcome.fail_on = settings.fail_on
-        expect = settings.expect
+        outcome.checked.append(done.shown)
+        outcome.ran[done.shown] = done.ran
+        outcome.findings.extend(done.findings)
+        outcome.skipped.update(done.skipped)
+        outcome.crashed = outcome.crashed or done.crashed
+        outcome.fail_on = task.settings.fail_on
+        expect = task.settings.expect
         outcome.expects = outcome.expects or expect.mass is not None or expect.com is not None
-        outcome.models[shown] = report.model_summary(result)
-        if args.matrix and result.document is not None and result.document.root is not None:
-            rows = matrix.rows(result.findings, settings.targets, settings.confirm)
-            outcome.matrix.extend({"path": shown, **row} for row in rows)
-        if args.emit_expanded and result.document is not None:
-            args.emit_expanded.write_bytes(result.document.source)
+        outcome.models[done.shown] = done.model
+        outcome.matrix.extend(done.matrix)
+
+
+def _task(args: argparse.Namespace, name: str, finder: SettingsFinder) -> Any:
+    """One file's task: its settings (from the configuration nearest to it), stdin's bytes."""
+    from urdflint.cli import parallel
+
+    is_stdin = name == "-"
+    try:
+        settings = finder.for_folder(Path.cwd() if is_stdin else Path(name).parent)
+    except config.ConfigError as exc:
+        raise UsageError(str(exc)) from None
+    if args.matrix and not args.target and settings.targets == targets.DEFAULT_TARGETS:
+        settings = replace(settings, targets=tuple(targets.TARGETS))  # every row
+    if not is_stdin:
+        return parallel.Task(name, name, settings)
+    return parallel.Task(name, args.stdin_filename, settings, sys.stdin.buffer.read())
 
 
 def _finish(

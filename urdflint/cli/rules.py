@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
@@ -34,6 +33,8 @@ def run_rules(args: argparse.Namespace) -> int:
             }
             for r in sorted(rules.values(), key=lambda r: r.code)
         ]
+        import json
+
         print(json.dumps({"version": 1, "rules": data}, indent=2))
         return EXIT_OK
     for r in sorted(rules.values(), key=lambda r: r.code):

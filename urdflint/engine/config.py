@@ -8,7 +8,6 @@ Unknown keys, rule codes, severities and targets are errors naming the key.
 from __future__ import annotations
 
 import fnmatch
-import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -109,8 +108,10 @@ class Settings:
 
     def enabled(self) -> set[str]:
         """Codes of the rules that run."""
-        rules = registry.load_rules()
-        codes = registry.expand(self.select) if self.select is not None else set(rules)
+        if self.select is None:
+            codes = set(registry.load_rules())
+        else:  # only the selected families are imported
+            codes = registry.expand(self.select)
         codes |= registry.expand(self.extend_select)
         codes -= registry.expand(self.ignore)
         codes -= {code for code, level in self.severity.items() if level is None}
@@ -362,6 +363,8 @@ def _rule_options(table: Any) -> dict[str, dict[str, Any]]:
 
 def load(path: Path) -> Settings:
     """Read and validate one configuration file."""
+    import tomllib  # only when there is a configuration file
+
     try:
         with path.open("rb") as handle:
             data = tomllib.load(handle)
@@ -386,6 +389,8 @@ def discover(start: Path) -> Path | None:
                 continue
             if name != "pyproject.toml":
                 return candidate
+            import tomllib
+
             try:
                 with candidate.open("rb") as handle:
                     if "urdflint" in tomllib.load(handle).get("tool", {}):

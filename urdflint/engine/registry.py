@@ -166,8 +166,8 @@ def rule(
 
 def lookup(key: str) -> Rule | None:
     """Find a rule by code (``I005``) or name (``triangle-inequality``)."""
-    load_rules()
     key = key.strip()
+    load_rules(families_of([key]))
     if key.upper() in RULES:
         return RULES[key.upper()]
     for candidate in RULES.values():
@@ -176,12 +176,30 @@ def lookup(key: str) -> Rule | None:
     return None
 
 
+SELECTOR_RE = re.compile(r"[A-Z]\d{0,3}")
+
+
+def families_of(selectors: list[str] | tuple[str, ...]) -> set[str] | None:
+    """The family letters ``selectors`` can match, or ``None`` when one of them is a rule
+    name or ``ALL`` (then every family is needed to resolve it)."""
+    letters: set[str] = set()
+    for raw in selectors:
+        key = raw.strip().upper()
+        if not key:
+            continue
+        if not SELECTOR_RE.fullmatch(key):
+            return None
+        letters.add(key[0])
+    return letters
+
+
 def expand(selectors: list[str] | tuple[str, ...]) -> set[str]:
     """Turn codes, names and code prefixes (``I``, ``I00``) into a set of codes.
 
-    Raises ``ValueError`` naming the first selector that matches no rule.
+    Loads only the families the selectors name. Raises ``ValueError`` naming the first
+    selector that matches no rule.
     """
-    load_rules()
+    load_rules(families_of(selectors))
     codes: set[str] = set()
     for raw in selectors:
         key = raw.strip()
@@ -195,9 +213,7 @@ def expand(selectors: list[str] | tuple[str, ...]) -> set[str]:
             codes.add(found.code)
             continue
         prefix = [
-            c
-            for c in RULES
-            if c.startswith(key.upper()) and re.fullmatch(r"[A-Z]\d{0,2}", key.upper())
+            c for c in RULES if c.startswith(key.upper()) and SELECTOR_RE.fullmatch(key.upper())
         ]
         if not prefix:
             raise ValueError(f"unknown rule or rule family {raw!r}")
@@ -205,18 +221,22 @@ def expand(selectors: list[str] | tuple[str, ...]) -> set[str]:
     return codes
 
 
-# The rule catalogues: plug-in packages that register their rules when imported. Rules sit
-# above the engine (they import the registry), so the engine loads them by name, not by an
-# import statement.
+# The rule catalogue: a plug-in package whose ``PACKAGES`` maps family letters to
+# sub-packages that register their rules when imported. Rules sit above the engine (they
+# import the registry), so the engine loads them by name, not by an import statement.
 RULE_PACKAGES: tuple[str, ...] = ("urdflint.rules",)
-_loaded = False
+_loaded: set[str] = set()  # family letters imported so far
+ALWAYS = frozenset("U")  # urdflint's own rules (internal error, suppressions): every run
 
 
-def load_rules() -> dict[str, Rule]:
-    """Import the rule catalogues (once) and return the registry."""
-    global _loaded
-    if not _loaded:
-        for package in RULE_PACKAGES:
-            importlib.import_module(package)
-        _loaded = True
+def load_rules(families: set[str] | frozenset[str] | None = None) -> dict[str, Rule]:
+    """Import the rule families (all, or only ``families`` and urdflint's own) once each,
+    and return the registry."""
+    for package in RULE_PACKAGES:
+        catalogue = importlib.import_module(package)
+        wanted = catalogue.PACKAGES if families is None else families | ALWAYS
+        for letter in sorted(set(wanted) - _loaded):
+            if letter in catalogue.PACKAGES:
+                importlib.import_module(f"{package}.{catalogue.PACKAGES[letter]}")
+                _loaded.add(letter)
     return RULES

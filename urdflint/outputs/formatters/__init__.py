@@ -11,15 +11,13 @@ __all__ = ["NAMES", "RunInfo", "get", "summary_line"]
 
 
 def get(name: str) -> Callable[[Sequence[Finding], RunInfo], str]:
-    from urdflint.outputs.formatters import github, json, junit, sarif, text
+    import importlib
 
-    return {
-        "text": text.render,
-        "json": json.render,
-        "github": github.render,
-        "sarif": sarif.render,
-        "junit": junit.render,
-    }[name]
+    if name not in NAMES:
+        raise KeyError(name)
+    module = importlib.import_module(f"urdflint.outputs.formatters.{name}")  # only the one used
+    render: Callable[[Sequence[Finding], RunInfo], str] = module.render
+    return render
 
 
 NAMES = ("text", "json", "github", "sarif", "junit")
