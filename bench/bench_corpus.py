@@ -172,7 +172,7 @@ def main() -> int:
 
     for label, select in (("--select X,S,J", ("X", "S", "J")), ("every rule", None)):
         probe = (
-            "import sys; from urdflint import config, linter; "
+            "import sys; from urdflint.engine import config, linter; "
             f"s = config.Settings(select={select!r}); "
             f"linter.lint_bytes(open({str(SMALL)!r}, 'rb').read(), 'x', s); "
             f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))"

@@ -33,6 +33,7 @@ LAYERS = {
     "urdflint.outputs": 3,
     "urdflint.engines": 3,
     "urdflint.server": 4,
+    "urdflint.lsp": 4,
     "urdflint.cli": 5,
 }
 FACADE_RANK = 2.5  # urdflint/__init__.py: importable from rules and outputs upwards

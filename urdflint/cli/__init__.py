@@ -12,7 +12,7 @@ import sys
 from collections.abc import Sequence
 
 from urdflint import __version__
-from urdflint.cli import check, info, rules, serve
+from urdflint.cli import check, info, lsp, rules, serve
 from urdflint.cli.common import EXIT_ERROR, EXIT_FINDINGS, EXIT_OK, UsageError
 from urdflint.engine.options import SettingsFinder
 from urdflint.sources.discovery import collect
@@ -27,6 +27,7 @@ COMMANDS = {
     "rules": rules.run_rules,
     "explain": rules.run_explain,
     "serve": serve.run,
+    "lsp": lsp.run,
 }
 
 
@@ -41,6 +42,7 @@ def build_parser() -> argparse.ArgumentParser:
     info.add_parser(sub)
     rules.add_parsers(sub)
     serve.add_parser(sub)
+    lsp.add_parser(sub)
     return parser
 
 

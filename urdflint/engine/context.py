@@ -29,6 +29,7 @@ class Context:
     environ: Mapping[str, str] | None = None
     q: dict[str, float] = field(default_factory=dict)
     workspace: Mapping[str, Path] = field(default_factory=dict)  # may be found lazily
+    overlay: Mapping[str, bytes] = field(default_factory=dict)  # absolute path -> unsaved text
     _meshes: Any = None
 
     def resolver(self, base_dir: Path | None, settings: Settings) -> Resolver:

@@ -194,6 +194,9 @@ class Expansion(Problems):
         shown = self.shown_path(full)
         if not self.inside(full):
             raise refused("X010", f"{shown} is outside the allowed folder", needle=_base(full))
+        unsaved = self.context.overlay.get(full)  # an editor's buffer (urdflint lsp)
+        if unsaved is not None:
+            return unsaved
         try:
             size = os.stat(full).st_size
             if size > MAX_BYTES:

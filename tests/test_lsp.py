@@ -1,0 +1,256 @@
+"""``urdflint lsp`` driven over stdio as an editor drives it (pytest-lsp): diagnostics with
+exact ranges on open and on change, in the macro file where a xacro defect is written, code
+actions that fix or suppress, hover, the outline."""
+
+from __future__ import annotations
+
+import asyncio
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("pygls")
+pytest_lsp = pytest.importorskip("pytest_lsp")
+
+from lsprotocol import types as T  # noqa: E402
+from pytest_lsp import ClientServerConfig, LanguageClient  # noqa: E402
+
+from tests.conftest import FIXTURES  # noqa: E402
+
+SERVER = ClientServerConfig(server_command=[sys.executable, "-m", "urdflint", "lsp"])
+J008 = FIXTURES / "rules" / "J008" / "bad.urdf"
+
+MACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="segment" params="name parent">
+    <link name="${name}">
+      <inertial>
+        <mass value="0.5"/>
+        <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+      </inertial>
+    </link>
+    <joint name="${name}_joint" type="revolute">
+      <parent link="${parent}"/>
+      <child link="${name}"/>
+      <axis xyz="1 1 0"/>
+      <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+ENTRY = """<?xml version="1.0"?>
+<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find arm_description)/urdf/segment.xacro"/>
+  <link name="base_link"/>
+  <xacro:segment name="upper" parent="base_link"/>
+  <xacro:segment name="lower" parent="upper"/>
+</robot>
+"""
+
+
+@pytest_lsp.fixture(config=SERVER)
+async def client(lsp_client: LanguageClient, tmp_path: Path):
+    await lsp_client.initialize_session(
+        T.InitializeParams(
+            capabilities=pytest_lsp.client_capabilities("visual-studio-code"),
+            root_uri=tmp_path.as_uri(),
+            workspace_folders=[T.WorkspaceFolder(tmp_path.as_uri(), "work")],
+        )
+    )
+    yield
+    await lsp_client.shutdown_session()
+
+
+async def published(client: LanguageClient, uri: str, before: object) -> None:
+    """Wait until the server publishes ``uri``'s diagnostics anew (an analysis publishes every
+    file it reaches, one notification each, maybe several in one read: poll, do not count)."""
+
+    async def wait() -> None:
+        while client.diagnostics.get(uri) is before:
+            await asyncio.sleep(0.01)
+
+    await asyncio.wait_for(wait(), 60)
+
+
+async def opened(
+    client: LanguageClient, path: Path, text: str | None = None, wait_for: Path | None = None
+) -> str:
+    uri = path.as_uri()
+    shown = (wait_for or path).as_uri()
+    before = client.diagnostics.get(shown)
+    client.text_document_did_open(
+        T.DidOpenTextDocumentParams(
+            T.TextDocumentItem(uri, "xml", 1, path.read_text() if text is None else text)
+        )
+    )
+    await published(client, shown, before)
+    return uri
+
+
+async def changed(client: LanguageClient, uri: str, text: str, version: int = 2) -> None:
+    before = client.diagnostics.get(uri)
+    client.text_document_did_change(
+        T.DidChangeTextDocumentParams(
+            T.VersionedTextDocumentIdentifier(version, uri),
+            [T.TextDocumentContentChangeWholeDocument(text)],
+        )
+    )
+    await published(client, uri, before)
+
+
+def codes(client: LanguageClient, uri: str) -> list[tuple[str | int | None, int, int, int]]:
+    return [
+        (d.code, d.range.start.line, d.range.start.character, d.range.end.character)
+        for d in client.diagnostics.get(uri, [])
+    ]
+
+
+def apply(text: str, edits: list[T.TextEdit]) -> str:
+    lines = text.split("\n")
+    offsets = [sum(len(line) + 1 for line in lines[:i]) for i in range(len(lines))]
+    for edit in sorted(edits, key=lambda e: (e.range.start.line, e.range.start.character))[::-1]:
+        start = offsets[edit.range.start.line] + edit.range.start.character
+        end = offsets[edit.range.end.line] + edit.range.end.character
+        text = text[:start] + edit.new_text + text[end:]
+    return text
+
+
+@pytest.mark.asyncio
+async def test_open_a_broken_file_then_fix_it_in_the_buffer(client: LanguageClient, tmp_path):
+    path = tmp_path / "arm.urdf"
+    shutil.copy(J008, path)
+    uri = await opened(client, path)
+    # the <axis .../> start tags on lines 7, 20, 33 (1-based), indented by 4
+    assert [c for c in codes(client, uri) if c[0] == "J008"] == [
+        ("J008", 6, 4, 23),
+        ("J008", 19, 4, 23),
+        ("J008", 32, 4, 25),
+    ]
+    first = next(d for d in client.diagnostics[uri] if d.code == "J008")
+    assert first.severity == T.DiagnosticSeverity.Warning
+    assert first.source == "urdflint"
+    text = path.read_text().replace('xyz="1 1 0"', 'xyz="1 0 0"')
+    await changed(client, uri, text)  # the unsaved buffer, not the file
+    assert [c[1] for c in codes(client, uri) if c[0] == "J008"] == [19, 32]
+
+
+@pytest.mark.asyncio
+async def test_code_actions_fix_and_suppress(client: LanguageClient, tmp_path):
+    path = tmp_path / "arm.urdf"
+    shutil.copy(J008, path)
+    uri = await opened(client, path)
+    diagnostic = next(d for d in client.diagnostics[uri] if d.code == "J008")
+    actions = await client.text_document_code_action_async(
+        T.CodeActionParams(
+            T.TextDocumentIdentifier(uri),
+            diagnostic.range,
+            T.CodeActionContext([diagnostic]),
+        )
+    )
+    assert actions is not None
+    titles = [a.title for a in actions if isinstance(a, T.CodeAction)]
+    assert titles[0].startswith("Fix J008: ")
+    assert titles[1] == "Suppress J008 (non-unit-axis) with a comment"
+    fix = actions[0]
+    assert isinstance(fix, T.CodeAction) and fix.edit and fix.edit.document_changes
+    change = fix.edit.document_changes[0]
+    assert isinstance(change, T.TextDocumentEdit)
+    fixed = apply(path.read_text(), list(change.edits))  # type: ignore[arg-type]
+    assert '<axis xyz="0.707107 0.707107 0"/>' in fixed.split("\n")[6]
+    await changed(client, uri, fixed)
+    assert [c[1] for c in codes(client, uri) if c[0] == "J008"] == [19, 32]
+
+    second = next(d for d in client.diagnostics[uri] if d.code == "J008")
+    assert second.range.start.line == 19
+    actions = await client.text_document_code_action_async(
+        T.CodeActionParams(
+            T.TextDocumentIdentifier(uri), second.range, T.CodeActionContext([second])
+        )
+    )
+    suppress = (actions or [])[-1]
+    assert isinstance(suppress, T.CodeAction) and suppress.edit and suppress.edit.changes
+    quiet = apply(fixed, suppress.edit.changes[uri])
+    assert quiet.split("\n")[19] == "    <!-- urdflint: ignore[J008] non-unit-axis -->"
+    await changed(client, uri, quiet, 3)
+    assert [c[1] for c in codes(client, uri) if c[0] == "J008"] == [33]
+
+
+@pytest.fixture
+def package(tmp_path: Path) -> Path:
+    root = tmp_path / "arm_description"
+    (root / "urdf").mkdir(parents=True)
+    (root / "package.xml").write_text(
+        '<?xml version="1.0"?>\n<package format="3"><name>arm_description</name>'
+        "<version>0.1.0</version><description>arm</description>"
+        '<maintainer email="a@b.c">a</maintainer><license>MIT</license></package>\n'
+    )
+    (root / "urdf" / "segment.xacro").write_text(MACRO)
+    (root / "urdf" / "arm.urdf.xacro").write_text(ENTRY)
+    return root
+
+
+@pytest.mark.asyncio
+async def test_a_macro_file_open_alone_shows_the_defects_written_in_it(
+    client: LanguageClient, package: Path
+):
+    macro = package / "urdf" / "segment.xacro"
+    uri = await opened(client, macro)
+    # the axis inside the macro, line 13: once, although the entry calls the macro twice
+    assert [c for c in codes(client, uri) if c[0] == "J008"] == [("J008", 12, 6, 25)]
+    related = client.diagnostics[uri][0].related_information or []
+    assert any("in macro `segment`, called here" in r.message for r in related)
+    await changed(client, uri, MACRO.replace('xyz="1 1 0"', 'xyz="0 0 1"'))
+    assert [c for c in codes(client, uri) if c[0] == "J008"] == []
+
+
+@pytest.mark.asyncio
+async def test_the_entry_file_puts_diagnostics_in_the_macro_file(
+    client: LanguageClient, package: Path
+):
+    entry, macro = package / "urdf" / "arm.urdf.xacro", package / "urdf" / "segment.xacro"
+    await opened(client, entry, wait_for=macro)
+    macro_uri = macro.as_uri()
+    assert [c for c in codes(client, macro_uri) if c[0] == "J008"] == [("J008", 12, 6, 25)]
+
+
+@pytest.mark.asyncio
+async def test_hover_on_a_link_the_robot_and_a_finding(client: LanguageClient, tmp_path):
+    path = tmp_path / "arm.urdf"
+    shutil.copy(J008, path)
+    uri = await opened(client, path)
+
+    async def hover(line: int, character: int) -> str:
+        found = await client.text_document_hover_async(
+            T.HoverParams(T.TextDocumentIdentifier(uri), T.Position(line, character))
+        )
+        assert found is not None and isinstance(found.contents, T.MarkupContent)
+        return found.contents.value
+
+    link = await hover(11, 10)  # <link name="link1">
+    assert "**link `link1`**" in link and "mass 0.5 kg" in link
+    assert "principal moments 0.001 0.001 0.001" in link
+    robot = await hover(2, 3)
+    assert "4 links, 3 joints" in robot and "total mass 1.5 kg" in robot
+    axis = await hover(6, 8)
+    assert axis.startswith("**J008 non-unit-axis** (warning)")
+    assert "`urdflint explain J008`" in axis
+
+
+@pytest.mark.asyncio
+async def test_outline_is_the_link_and_joint_tree(client: LanguageClient, tmp_path):
+    path = tmp_path / "arm.urdf"
+    shutil.copy(J008, path)
+    uri = await opened(client, path)
+    found = await client.text_document_document_symbol_async(
+        T.DocumentSymbolParams(T.TextDocumentIdentifier(uri))
+    )
+    assert found is not None
+    (robot,) = found
+    assert isinstance(robot, T.DocumentSymbol) and robot.name == "j008_bad"
+    links = robot.children or []
+    assert [s.name for s in links] == ["base_link", "link1", "link2", "link3"]
+    shoulder = (links[0].children or [])[0]
+    assert (shoulder.name, shoulder.detail) == ("shoulder", "revolute -> link1")
+    assert shoulder.range.start == T.Position(4, 2)

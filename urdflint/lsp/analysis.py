@@ -1,0 +1,193 @@
+"""What the language server knows about the files: open buffers, analyses, findings per file.
+
+An *analysis* lints one entry file (a URDF, or a xacro file that expands to a robot) from the
+editor's unsaved buffers (every file xacro reads comes from an open buffer when there is one).
+Its findings land in the files where the defects are written, so one analysis can put
+diagnostics in several files, and a file's diagnostics are the union of the analyses that
+reach it. A xacro macro file that is not a robot by itself is analysed through the entry files
+of its package that include it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from urdflint.engine import config, linter
+from urdflint.engine.context import Context
+from urdflint.engine.options import SettingsFinder
+from urdflint.model.finding import Finding
+
+SUFFIXES = (".urdf", ".xacro")
+MAX_SCAN = 4000  # files looked at when searching a package for a macro file's entries
+MAX_ENTRIES = 4  # entry files analysed for one macro file
+
+
+def wanted(path: str) -> bool:
+    return path.lower().endswith(SUFFIXES)
+
+
+@dataclass
+class Analysis:
+    """The last lint of one entry file."""
+
+    entry: str
+    findings: dict[str, list[Finding]] = field(default_factory=dict)  # file -> its findings
+    files: frozenset[str] = frozenset()  # every file the lint read (entry and includes)
+    document: Any = None
+    library: bool = False  # the entry is a macro file, not a robot
+
+
+class Analyzer:
+    """Open buffers, settings per folder, and the analyses that reach each file."""
+
+    def __init__(self, roots: Iterable[Path] = ()) -> None:
+        from urdflint.sources import workspace
+
+        self.roots = [r.resolve() for r in roots] or [Path.cwd()]
+        self.buffers: dict[str, str] = {}
+        self.analyses: dict[str, Analysis] = {}
+        self.workspace = workspace.Packages(self.roots)
+        self.finder = self._finder()
+
+    @staticmethod
+    def _finder() -> SettingsFinder:
+        args = argparse.Namespace(command="lsp", q=[], isolated=False, config=None)
+        return SettingsFinder(args)
+
+    def configuration_changed(self) -> None:
+        self.finder = self._finder()
+
+    # -- buffers ------------------------------------------------------------------------
+
+    def open(self, path: str, text: str) -> None:
+        self.buffers[os.path.abspath(path)] = text
+
+    def close(self, path: str) -> None:
+        self.buffers.pop(os.path.abspath(path), None)
+
+    def text(self, path: str) -> str | None:
+        """A file's current text: the open buffer, else the file on disk."""
+        full = os.path.abspath(path)
+        if full in self.buffers:
+            return self.buffers[full]
+        try:
+            return Path(full).read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            return None
+
+    def overlay(self) -> dict[str, bytes]:
+        return {path: text.encode("utf-8") for path, text in list(self.buffers.items())}
+
+    # -- analyses -----------------------------------------------------------------------
+
+    def analyse(self, entry: str) -> Analysis:
+        """Lint ``entry`` from the buffers and remember what it found where."""
+        entry = os.path.abspath(entry)
+        settings = self._settings(entry)
+        context = Context(workspace=self.workspace, overlay=self.overlay())
+        shown = entry
+        try:
+            if linter.is_xacro(entry):
+                result = linter.lint_path(Path(entry), shown, settings, context)
+            else:
+                data = context.overlay.get(entry)
+                if data is None:
+                    data = Path(entry).read_bytes()
+                result = linter.lint_bytes(data, shown, settings, context, Path(entry).parent)
+        except OSError:
+            self.analyses.pop(entry, None)
+            return Analysis(entry)
+        found: dict[str, list[Finding]] = {}
+        for finding in result.findings:
+            found.setdefault(os.path.abspath(finding.path), []).append(finding)
+        doc = result.document
+        files = {entry, *found}
+        if doc is not None and doc.origin is not None:
+            files |= {os.path.abspath(f.path) for f in getattr(doc.origin, "files", ())}
+        analysis = Analysis(entry, found, frozenset(files), doc, bool(doc and doc.library))
+        self.analyses[entry] = analysis
+        return analysis
+
+    def _settings(self, entry: str) -> config.Settings:
+        try:
+            return self.finder.for_folder(Path(entry).parent)
+        except config.ConfigError:
+            return config.Settings()  # a broken configuration: the defaults, still linting
+
+    def affected(self, path: str) -> list[str]:
+        """The entries to analyse again when ``path`` changes: itself (if it is a robot),
+        every analysed entry that read it, and for a macro file its package's entries."""
+        path = os.path.abspath(path)
+        entries = [e for e, a in list(self.analyses.items()) if path in a.files and e != path]
+        own = self.analyses.get(path)
+        if own is None or not own.library:
+            entries.insert(0, path)
+        elif not entries:
+            entries = self.entries_of(path)
+        return entries
+
+    def entries_of(self, path: str) -> list[str]:
+        """Robot files of ``path``'s package whose text names ``path``'s file (xacro includes
+        name it), robots first (``*.urdf.xacro``), nearest first."""
+        package = _package_root(Path(path))
+        needle = os.path.basename(path)
+        found: list[str] = []
+        for i, candidate in enumerate(sorted(package.rglob("*.xacro"))):
+            if i > MAX_SCAN:
+                break
+            full = str(candidate.resolve())
+            if full == os.path.abspath(path) or candidate.name.endswith(".srdf.xacro"):
+                continue
+            text = self.text(full) or ""
+            if needle in text and "<robot" in text:
+                found.append(full)
+        found.sort(key=lambda f: (not f.endswith(".urdf.xacro"), f.count(os.sep), f))
+        return found[:MAX_ENTRIES]
+
+    def findings_for(self, path: str) -> list[Finding]:
+        """A file's diagnostics: the union of every analysis's findings there (a macro file
+        expanded by two entries shows a defect once)."""
+        path = os.path.abspath(path)
+        seen: set[tuple[int, int, str, str]] = set()
+        out: list[Finding] = []
+        for analysis in list(self.analyses.values()):
+            if analysis.library and analysis.entry == path and self.reached(path):
+                continue  # the macro file's own "library" note: its entries speak for it
+            for finding in analysis.findings.get(path, []):
+                key = (finding.line, finding.column, finding.code, finding.message)
+                if key not in seen:
+                    seen.add(key)
+                    out.append(finding)
+        return sorted(out, key=Finding.sort_key)
+
+    def reached(self, path: str) -> bool:
+        """Whether another analysis reads ``path`` (an entry that includes it)."""
+        return any(path in a.files for e, a in list(self.analyses.items()) if e != path)
+
+    def forget(self, entry: str) -> None:
+        self.analyses.pop(os.path.abspath(entry), None)
+
+    def document_for(self, path: str) -> tuple[Any, str] | None:
+        """The linted document that covers ``path`` (its own, else an entry's), and whether it
+        is the file itself (``"self"``) or an expansion that includes it (``"entry"``)."""
+        path = os.path.abspath(path)
+        own = self.analyses.get(path)
+        if own is not None and own.document is not None and not own.library:
+            return own.document, "self"
+        for entry, analysis in list(self.analyses.items()):
+            if entry != path and path in analysis.files and analysis.document is not None:
+                return analysis.document, "entry"
+        return None
+
+
+def _package_root(path: Path) -> Path:
+    """The nearest folder above ``path`` with a ``package.xml`` (else the file's folder)."""
+    for folder in path.resolve().parents:
+        if (folder / "package.xml").is_file():
+            return folder
+    return path.resolve().parent

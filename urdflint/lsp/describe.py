@@ -1,0 +1,205 @@
+"""Hover text and the outline: what the cursor is on, a link's inertia, the robot's mass.
+
+Elements are found in the linted document by where they are written: their start tag in a
+URDF, the xacro source map for a xacro file (also a macro file expanded by its entry).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterator
+from typing import Any
+
+from lsprotocol import types as T
+
+from urdflint.engine import registry
+from urdflint.lsp import convert
+from urdflint.model import inertia
+from urdflint.model.finding import Finding
+
+START_TAG_RE = re.compile(r"""<([A-Za-z_][\w.:-]*)(?:"[^"]*"|'[^']*'|[^'">])*>""")
+
+
+def tag_at(
+    text: str, lines: list[str], pos: T.Position
+) -> tuple[str, tuple[int, int], tuple[int, int]] | None:
+    """The start tag under the cursor: its name, and the 1-based (line, column) where it
+    starts and ends."""
+    if pos.line >= len(lines):
+        return None
+    row = lines[pos.line]
+    chars, count = 0, 0
+    while chars < len(row) and count < pos.character:  # UTF-16 units -> code points
+        count += 2 if ord(row[chars]) > 0xFFFF else 1
+        chars += 1
+    offset = sum(len(line) + 1 for line in lines[: pos.line]) + chars  # split on \n
+    at = text.rfind("<", 0, offset + 1)
+    match = START_TAG_RE.match(text, at) if at >= 0 else None
+    if match is None or match.end() <= offset:
+        return None
+    return match.group(1), _line_column(text, at), _line_column(text, match.end() - 1)
+
+
+def _line_column(text: str, offset: int) -> tuple[int, int]:
+    return text.count("\n", 0, offset) + 1, offset - (text.rfind("\n", 0, offset) + 1) + 1
+
+
+def element_at(doc: Any, path: str, line: int, column: int) -> Any:
+    """The element of ``doc`` written at ``path:line:column``."""
+    if doc is None or doc.root is None:
+        return None
+    for el in _named(doc):
+        if doc.origin is None:
+            if os.path.abspath(doc.path) == path and doc.start_of(el) == (line, column):
+                return el
+            continue
+        origin = doc.origin(el, None)
+        if (
+            origin is not None
+            and origin.exact
+            and (origin.line, origin.column) == (line, column)
+            and os.path.abspath(origin.path) == path
+        ):
+            return el
+    return None
+
+
+def _named(doc: Any) -> Iterator[Any]:
+    yield doc.root
+    for link in doc.links:
+        yield link.element
+    for joint in doc.joints:
+        yield joint.element
+
+
+def hover(doc: Any, findings: list[Finding], element: Any, tag: str) -> str | None:
+    """Markdown: the rules of the findings on the tag, then the link's or robot's numbers."""
+    parts = [_rule_text(f) for f in findings]
+    if element is not None and tag == "link":
+        parts.append(_link_text(element))
+    elif element is not None and tag == "robot":
+        parts.append(_robot_text(doc))
+    text = "\n\n---\n\n".join(p for p in parts if p)
+    return text or None
+
+
+def _rule_text(finding: Finding) -> str:
+    rule = registry.lookup(finding.code)
+    head = f"**{finding.code} {finding.name}** ({finding.severity}): {finding.message}"
+    if rule is None:
+        return head
+    body = [head, rule.summary]
+    for heading in ("Why is this bad?", "How to fix"):
+        section = rule.section(heading)
+        if section:
+            body.append(f"*{heading}* {section}")
+    body.append(f"`urdflint explain {finding.code}`")
+    return "\n\n".join(body)
+
+
+def _fmt(value: float) -> str:
+    return f"{value:.6g}"
+
+
+def _link_text(element: Any) -> str:
+    name = element.get("name")
+    found = inertia.read_inertial(element)
+    if found is None:
+        return f"**link `{name}`**: no `<inertial>` (Gazebo drops the link, others give it 0 kg)"
+    lines = [f"**link `{name}`**"]
+    if found.mass is not None:
+        lines.append(f"mass {_fmt(found.mass)} kg")
+    if found.xyz is not None:
+        lines.append("centre of mass " + " ".join(_fmt(v) for v in found.xyz) + " m (link frame)")
+    if found.tensor is not None:
+        ixx, iyy, izz, ixy, ixz, iyz = found.tensor
+        lines.append(
+            f"inertia ixx {_fmt(ixx)} iyy {_fmt(iyy)} izz {_fmt(izz)} "
+            f"ixy {_fmt(ixy)} ixz {_fmt(ixz)} iyz {_fmt(iyz)} kg·m²"
+        )
+        moments = inertia.principal_moments(found.tensor)
+        lines.append("principal moments " + " ".join(_fmt(m) for m in moments) + " kg·m²")
+    return "  \n".join(lines)
+
+
+def _robot_text(doc: Any) -> str:
+    lines = [
+        f"**robot `{doc.root.get('name')}`**: {len(doc.links)} links, {len(doc.joints)} joints"
+    ]
+    physics = doc.physics
+    if physics.built:
+        lines.append(f"total mass {_fmt(physics.mass)} kg")
+        if physics.com is not None:
+            lines.append("centre of mass " + " ".join(_fmt(v) for v in physics.com) + " m")
+            lines.append(f"(root link `{physics.root}` frame, zero pose; Pinocchio)")
+    else:
+        masses = [m for m in (_mass(link.element) for link in doc.links) if m is not None]
+        lines.append(f"total mass {_fmt(sum(masses))} kg (sum of the links' masses)")
+        lines.append(f"centre of mass: not computed ({physics.reason})")
+    return "  \n".join(lines)
+
+
+def _mass(element: Any) -> float | None:
+    found = inertia.read_inertial(element)
+    return found.mass if found is not None else None
+
+
+def symbols(doc: Any, path: str, lines: list[str]) -> list[T.DocumentSymbol]:
+    """The outline: for the robot's own file its kinematic tree (link > joint > link), for
+    a file xacro includes the links and joints written in it."""
+    if doc is None or doc.root is None:
+        return []
+    here = [(el, _where(doc, el, path)) for el in _named(doc)]
+    placed = {id(el): at for el, at in here if at is not None}
+    if doc.root is not None and id(doc.root) in placed and doc.origin is None:
+        return [_tree(doc, placed, lines)]
+    return [_symbol(el, at, lines, []) for el, at in here if at is not None and el is not doc.root]
+
+
+def _where(doc: Any, el: Any, path: str) -> tuple[int, int] | None:
+    if doc.origin is None:
+        return doc.start_of(el) if os.path.abspath(doc.path) == path else None
+    origin = doc.origin(el, None)
+    if origin is None or not origin.exact or os.path.abspath(origin.path) != path:
+        return None
+    return origin.line, origin.column
+
+
+KINDS = {"robot": T.SymbolKind.Module, "link": T.SymbolKind.Class, "joint": T.SymbolKind.Field}
+
+
+def _symbol(
+    el: Any,
+    at: tuple[int, int],
+    lines: list[str],
+    children: list[T.DocumentSymbol],
+    detail: str | None = None,
+) -> T.DocumentSymbol:
+    start = convert.position(lines, *at)
+    row = lines[start.line] if start.line < len(lines) else ""
+    whole = T.Range(start, T.Position(start.line, convert.units(row.rstrip())))
+    detail = detail or (el.get("type") if el.tag == "joint" else None)
+    name = el.get("name") or f"(unnamed {el.tag})"
+    return T.DocumentSymbol(
+        name, KINDS.get(str(el.tag), T.SymbolKind.Object), whole, whole, detail, children=children
+    )
+
+
+def _tree(doc: Any, placed: dict[int, tuple[int, int]], lines: list[str]) -> T.DocumentSymbol:
+    """robot > link > the joints that hang children on it (flat: a 1,000-link chain is 1,000
+    siblings, not 1,000 levels)."""
+    by_parent: dict[str, list[Any]] = {}
+    for joint in doc.joints:
+        if id(joint.element) in placed:
+            by_parent.setdefault(str(joint.parent), []).append(joint)
+    links = []
+    for name, link in doc.link_map.items():
+        if id(link.element) not in placed:
+            continue
+        kids = [
+            _symbol(j.element, placed[id(j.element)], lines, [], f"{j.type} -> {j.child}")
+            for j in by_parent.get(name, [])
+        ]
+        links.append(_symbol(link.element, placed[id(link.element)], lines, kids))
+    return _symbol(doc.root, placed[id(doc.root)], lines, links)
