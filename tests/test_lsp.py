@@ -254,3 +254,35 @@ async def test_outline_is_the_link_and_joint_tree(client: LanguageClient, tmp_pa
     shoulder = (links[0].children or [])[0]
     assert (shoulder.name, shoulder.detail) == ("shoulder", "revolute -> link1")
     assert shoulder.range.start == T.Position(4, 2)
+
+
+def test_a_suppression_goes_right_before_an_element_that_does_not_start_its_line() -> None:
+    from urdflint.lsp import convert
+    from urdflint.model.finding import Finding, Severity
+
+    lines = ['  <joint name="j" type="fixed"><axis xyz="0 0 0"/>', "  </joint>"]
+    finding = Finding("a.urdf", 1, 33, "J006", "ignored-axis", Severity.INFO, "m", "/robot")
+    edit = convert.suppression(lines, "file:///a.urdf", finding)
+    (change,) = (edit.changes or {})["file:///a.urdf"]
+    assert change.range.start == T.Position(0, 32)
+    assert change.new_text == "<!-- urdflint: ignore[J006] ignored-axis -->"
+    finding = Finding("a.urdf", 1, 3, "J006", "ignored-axis", Severity.INFO, "m", "/robot")
+    (change,) = (convert.suppression(lines, "file:///a.urdf", finding).changes or {})[
+        "file:///a.urdf"
+    ]
+    assert change.range.start == T.Position(0, 0)
+    assert change.new_text == "  <!-- urdflint: ignore[J006] ignored-axis -->\n"
+
+
+@pytest.mark.asyncio
+async def test_a_half_typed_file_is_a_finding_not_a_crash(client: LanguageClient, tmp_path):
+    path = tmp_path / "typing.urdf"
+    text = '<?xml version="1.0"?>\n<robot name="r">\n  <link name="a">\n  <joint\n'
+    path.write_text(text)
+    uri = await opened(client, path)
+    (broken,) = [d for d in client.diagnostics[uri] if d.code == "X001"]
+    assert broken.severity == T.DiagnosticSeverity.Error
+    await changed(
+        client, uri, '<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"/>\n</robot>\n'
+    )
+    assert "X001" not in [d.code for d in client.diagnostics[uri]]

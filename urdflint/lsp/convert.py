@@ -130,10 +130,15 @@ def fix_edit(autofix: Any, text_of: Any) -> T.WorkspaceEdit | None:
 
 
 def suppression(lines: list[str], uri: str, finding: Finding) -> T.WorkspaceEdit:
-    """An ``ignore`` comment on its own line above the finding's element, indented as it."""
+    """An ``ignore`` comment right before the finding's element: on its own line above it,
+    indented as it, when the element starts its line; else just before it on the line."""
     row = min(max(finding.line - 1, 0), max(len(lines) - 1, 0))
     text = lines[row] if lines else ""
+    column = min(max(finding.column - 1, 0), len(text))
+    comment = f"<!-- urdflint: ignore[{finding.code}] {finding.name} -->"
+    if text[:column].strip():  # something precedes the element on its line
+        at = T.Position(row, units(text[:column]))
+        return T.WorkspaceEdit(changes={uri: [T.TextEdit(T.Range(at, at), comment)]})
     indent = text[: len(text) - len(text.lstrip())]
-    comment = f"{indent}<!-- urdflint: ignore[{finding.code}] {finding.name} -->\n"
     at = T.Position(row, 0)
-    return T.WorkspaceEdit(changes={uri: [T.TextEdit(T.Range(at, at), comment)]})
+    return T.WorkspaceEdit(changes={uri: [T.TextEdit(T.Range(at, at), f"{indent}{comment}\n")]})
