@@ -41,7 +41,7 @@ from urdflint.rules import lumping as L
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.schema import Kind, attributes, malformed, owner
+from urdflint.model.schema import Kind, malformed, owner, typed_values
 from urdflint.model.values import has_xacro
 
 
@@ -53,8 +53,7 @@ from urdflint.model.values import has_xacro
     effects={"": K.INVALID_NUMBER, "mass": K.INVALID_MASS},
 )
 def check(doc: Document) -> Iterator[Hit]:
-    for el, attr, kind in attributes(doc.robot):
-        value = el.get(attr) or ""
+    for el, attr, kind, value in typed_values(doc.robot):
         if kind is Kind.STRING or has_xacro(value):
             continue
         why = malformed(value, kind)

@@ -33,8 +33,10 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
-from urdflint.model.schema import attributes, owner, wrong_arity
+from urdflint.model.schema import Kind, owner, typed_values, wrong_arity
 from urdflint.model.values import has_xacro
+
+VECTORS = frozenset(kind for kind in Kind if kind.arity >= 2)
 
 
 @rule(
@@ -44,9 +46,8 @@ from urdflint.model.values import has_xacro
     fix="Write every component, separated by spaces (3 for xyz/rpy/size/scale, 4 for rgba).",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    for el, attr, kind in attributes(doc.robot):
-        value = el.get(attr) or ""
-        if kind.arity < 2 or has_xacro(value):
+    for el, attr, kind, value in typed_values(doc.robot):
+        if kind not in VECTORS or has_xacro(value):
             continue
         count = wrong_arity(value, kind)
         if count is None:

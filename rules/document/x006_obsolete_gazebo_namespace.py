@@ -44,7 +44,7 @@ PLAYERSTAGE = "playerstage.sourceforge.net/gazebo/xmlschema"
 def check(doc: Document) -> Iterator[Hit]:
     if b"playerstage" not in doc.source:
         return  # no declaration to find: skip the walk
-    for el in doc.robot.iter(etree.Element):
+    for el in _declaring(doc.robot):
         parent = el.getparent()
         inherited = parent.nsmap if parent is not None else {}
         names = [
@@ -67,3 +67,17 @@ def check(doc: Document) -> Iterator[Hit]:
                 + ", ".join(names),
                 repair=repair,
             )
+
+
+def _declaring(robot: etree._Element) -> list[etree._Element]:
+    """The elements that declare a namespace, in document order (the others inherit their
+    parent's namespaces and declare nothing obsolete)."""
+    found: list[etree._Element] = []
+    declared = False
+    for event, item in etree.iterwalk(robot, events=("start-ns", "start")):
+        if event == "start-ns":
+            declared = True  # a declaration of the element whose start comes next
+        elif declared:
+            found.append(item)
+            declared = False
+    return found

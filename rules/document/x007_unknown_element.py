@@ -58,7 +58,7 @@ from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document, children
 from urdflint.model.edits import RenameElement, Repair
 from urdflint.model.finding import Severity
-from urdflint.model.schema import SPECS, describe, homes, walk
+from urdflint.model.schema import SPECS, describe, homes, visits
 from urdflint.model.spelling import ranked, same_digits
 
 # Well-known mistakes that deserve a specific hint: (context, tag) -> hint.
@@ -77,7 +77,7 @@ HINTS = {
     fixable="safe",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    for visit in walk(doc.robot):
+    for visit in visits(doc.robot):
         if visit.key is not None:
             continue
         el = visit.element

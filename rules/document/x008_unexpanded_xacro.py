@@ -41,6 +41,7 @@ Run xacro and check the result: `xacro robot.urdf.xacro > robot.urdf`
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 
 from lxml import etree
@@ -54,6 +55,12 @@ from urdflint.model.values import has_xacro
 INERT = frozenset({"property", "arg", "macro"})
 NAME_ATTRS = frozenset({"name", "link", "joint", "reference"})
 EXPAND = "the file must be expanded with xacro first"
+# a value or a text with a $ (a superset: _expression decides), by the parent of either
+EXPRESSIONS = etree.XPath(
+    "descendant::*/@*[contains(., '$')]/.. | descendant::*/text()[contains(., '$')]/.."
+)
+COMMENT_RE = re.compile(rb"<!--.*?-->", re.S)
+NAMESPACED = etree.XPath("descendant::*[namespace-uri() != '']")
 
 
 @rule(
@@ -63,9 +70,13 @@ EXPAND = "the file must be expanded with xacro first"
     fix="Expand the file with xacro (xacro robot.urdf.xacro > robot.urdf) and lint the output.",
 )
 def check(doc: Document) -> Iterator[Hit]:
-    expressions = b"${" in doc.source or b"$(" in doc.source
+    # what can be reported, found by libxml2 in one pass each: the elements that may hold
+    # ${..} or $(..) in a value or a text, and the namespaced ones (xacro's among them)
+    marked = set(_xpath(EXPRESSIONS, doc.robot)) if _expressions(doc.source) else set()
+    spaced = b"xmlns" in doc.source or doc.undeclared_prefixes  # else no element has a URI
+    wanted = _ancestors([*marked, *(_xpath(NAMESPACED, doc.robot) if spaced else [])])
     in_names: list[tuple[etree._Element, str]] = []
-    stack = [doc.robot]
+    stack = [doc.robot] if wanted else []
     while stack:
         node = stack.pop()
         for el in node:
@@ -74,8 +85,9 @@ def check(doc: Document) -> Iterator[Hit]:
             if el.tag[0] == "{" and is_xacro(el):
                 yield _xacro_element(el)  # its subtree is reported with it
                 continue
-            stack.append(el)
-            where = _expression(el) if expressions else None
+            if el in wanted:
+                stack.append(el)  # only where something to report lies below
+            where = _expression(el) if el in marked else None
             if where is None:
                 continue
             if _only_in_names(el):
@@ -92,6 +104,30 @@ def check(doc: Document) -> Iterator[Hit]:
             f"literally, so {EXPAND}",
             severity=Severity.WARNING,
         )
+
+
+def _expressions(source: bytes) -> bool:
+    """Whether the file may hold ``${..}`` or ``$(..)`` outside its comments."""
+    if b"${" not in source and b"$(" not in source:
+        return False
+    if b"<![CDATA[" not in source:  # a CDATA section may hold a "<!--" that opens nothing
+        source = COMMENT_RE.sub(b"", source)
+    return b"${" in source or b"$(" in source
+
+
+def _xpath(path: etree.XPath, robot: etree._Element) -> list[etree._Element]:
+    return list(path(robot))  # type: ignore[arg-type]
+
+
+def _ancestors(elements: list[etree._Element]) -> set[etree._Element]:
+    """Every ancestor of ``elements``: where the walk must go to meet them in its order."""
+    found: set[etree._Element] = set()
+    for el in elements:
+        node = el.getparent()
+        while node is not None and node not in found:
+            found.add(node)
+            node = node.getparent()
+    return found
 
 
 def _only_in_names(el: etree._Element) -> bool:

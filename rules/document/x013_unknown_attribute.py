@@ -56,7 +56,7 @@ from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.edits import RemoveAttribute, Repair, SetAttribute
 from urdflint.model.finding import Severity
-from urdflint.model.schema import EXTENSION_ATTRS, SPECS, describe, walk
+from urdflint.model.schema import EXTENSION_ATTRS, SPECS, describe, visits
 from urdflint.model.spelling import ranked, same_digits
 from urdflint.model.values import vector
 
@@ -75,7 +75,7 @@ HINTS = {
 )
 def check(doc: Document) -> Iterator[Hit]:
     elements = [(doc.robot, "robot")]
-    elements += [(v.element, v.key) for v in walk(doc.robot) if v.key is not None]
+    elements += [(v.element, v.key) for v in visits(doc.robot) if v.key is not None]
     for el, key in elements:
         spec = SPECS[key]
         accepted = EXTENSION_ATTRS.get(key, {})

@@ -57,7 +57,7 @@ from lxml import etree
 from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.document import Document, children
+from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.geometry import shape_elements
 from urdflint.model.schema import homes
@@ -76,7 +76,7 @@ DIMENSIONS = {
 @rule("C003", "invalid-geometry", Severity.ERROR, effects={"degenerate": K.DEGENERATE_SHAPE})
 def check(doc: Document) -> Iterator[Hit]:
     for link in doc.links:
-        for owner in children(link.element, "visual") + children(link.element, "collision"):
+        for owner in link.visuals + link.collisions:
             yield from _owner(doc, owner, f"{owner.tag} of link {q(link.name)}")
 
 

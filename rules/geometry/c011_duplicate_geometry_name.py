@@ -57,7 +57,7 @@ def check(doc: Document) -> Iterator[Hit]:
 
 def _within(doc: Document, link: Link, tag: str) -> Iterator[Hit]:
     seen: dict[str, etree._Element] = {}
-    for el in link.element.findall(tag):
+    for el in link.visuals if tag == "visual" else link.collisions:
         name = el.get("name")
         if not name:
             continue
@@ -74,8 +74,8 @@ def _within(doc: Document, link: Link, tag: str) -> Iterator[Hit]:
 def _across_links(doc: Document) -> Iterator[Hit]:
     owner: dict[str, Link] = {}
     for link in doc.links:
-        names = {el.get("name") for el in link.element.findall("collision")} - {None, ""}
-        for el in link.element.findall("collision"):
+        names = {el.get("name") for el in link.collisions} - {None, ""}
+        for el in link.collisions:
             name = el.get("name")
             first = owner.get(name or "")
             if name and first is not None and first is not link:

@@ -77,7 +77,7 @@ def check(doc: Document) -> Iterator[Hit]:
             continue
         moments = principal_moments(inertial.tensor)
         tol = tolerance(moments)
-        listed = ", ".join(fmt(m) for m in moments)
+        listed = ", ".join(fmt(m) for m in moments) if moments[0] <= tol else ""
         if moments[0] < -tol:
             severity = impossible_severity(doc, name)
             yield Hit(

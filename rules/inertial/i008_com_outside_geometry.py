@@ -42,7 +42,7 @@ from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.bodies import Bodies, bodies
-from urdflint.model.document import Document
+from urdflint.model.document import Document, children
 from urdflint.model.finding import Severity
 from urdflint.model.inertia import Vec, apply, geometry_box, has_mesh, transform_box
 from urdflint.model.values import fmt
@@ -122,7 +122,7 @@ def body_box(
     boxes: list[tuple[Vec, Vec]] = []
     for name, rot, pos in b.members(body):
         link = doc.link_map.get(name)
-        if link is None or not any(link.element.findall(tag) for tag in tags):
+        if link is None or not any(children(link.element, tag) for tag in tags):
             continue
         box = geometry_box(doc, link.element, tags)
         if box is None or rot is None or pos is None:

@@ -7,9 +7,9 @@ share one namespace), separately for command and state interfaces, and reports t
 second declaration of a key. An error when the two are in different blocks (one
 finding per pair of blocks, on the first repeated interface, counting and naming the
 others: a MoveIt config that adds a `FakeSystem` block beside the description's own
-block repeats every interface), a warning when both are in the same block. A joint listed in two blocks with
-different interfaces (state in one, command in the other) is legal and not
-reported.
+block repeats every interface), a warning when both are in the same block. A joint
+listed in two blocks with different interfaces (state in one, command in the other) is
+legal and not reported.
 
 ## Why is this bad?
 The resource manager stores interfaces in one map per kind keyed by that name.

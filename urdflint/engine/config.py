@@ -108,10 +108,8 @@ class Settings:
 
     def enabled(self) -> set[str]:
         """Codes of the rules that run."""
-        if self.select is None:
-            codes = set(registry.load_rules())
-        else:  # only the selected families are imported
-            codes = registry.expand(self.select)
+        # only the selected families are imported
+        codes = set(registry.load_rules()) if self.select is None else registry.expand(self.select)
         codes |= registry.expand(self.extend_select)
         codes -= registry.expand(self.ignore)
         codes -= {code for code, level in self.severity.items() if level is None}

@@ -133,6 +133,7 @@ def _insert(doc: Document, op: E.InsertChild) -> list[Edit]:
     return [edit(parent, at, at, nl + pad + body)]
 
 
+@lru_cache(maxsize=16)  # one parent (often <robot>) takes many insertions
 def _unit(data: bytes, start: int) -> str:
     """The file's indentation step: a child's indentation beyond its parent's (the element
     at ``start``, else the ``<robot>`` element), two spaces when unknown."""
@@ -226,6 +227,7 @@ def forget_files() -> None:
     changed; after the last one, so a long-running service keeps no file contents)."""
     _FILES.clear()
     _lines.cache_clear()
+    _unit.cache_clear()
     E.newline.cache_clear()
 
 

@@ -17,6 +17,7 @@ from lxml import etree
 
 from urdflint.model.finding import Call
 from urdflint.model.graph import Graph
+from urdflint.model.memo import table
 from urdflint.model.parsing import MAX_BYTES, XACRO_NS, XmlProblem, local_tag, make_parser, parse
 from urdflint.model.positions import Lines, attribute_offset, tag_start
 from urdflint.model.providers import provided
@@ -62,46 +63,89 @@ class Origins(Protocol):
 
 
 def children(el: etree._Element, tag: str | None = None) -> list[etree._Element]:
-    """Element children (no comments), optionally only those named ``tag``."""
-    return [c for c in el if isinstance(c.tag, str) and (tag is None or c.tag == tag)]
+    """Element children (no comments), optionally only those named ``tag`` (a new list each
+    time; read once per element)."""
+    found = table(el, "children")
+    key = (el, tag)
+    listed = found.get(key)
+    if listed is None:
+        listed = [c for c in el if isinstance(c.tag, str) and (tag is None or c.tag == tag)]
+        found[key] = listed
+    return list(listed)
+
+
+# a link's first <inertial>, its <visual>s and its <collision>s
+_Parts = tuple[etree._Element | None, list[etree._Element], list[etree._Element]]
 
 
 class Link:
-    __slots__ = ("element", "name")
+    """A ``<link>`` with its name; its ``<inertial>``, visuals and collisions are read on first
+    use, in one pass over its children, and kept (the tree is never edited)."""
+
+    __slots__ = ("_parts", "element", "name")
 
     def __init__(self, element: etree._Element) -> None:
         self.element = element
         self.name: str | None = element.get("name")
+        self._parts: _Parts | None = None
+
+    def _read(self) -> _Parts:
+        inertial: etree._Element | None = None
+        visuals: list[etree._Element] = []
+        collisions: list[etree._Element] = []
+        for child in self.element:
+            tag = child.tag
+            if tag == "visual":
+                visuals.append(child)
+            elif tag == "collision":
+                collisions.append(child)
+            elif tag == "inertial" and inertial is None:
+                inertial = child
+        self._parts = (inertial, visuals, collisions)
+        return self._parts
 
     @property
     def inertial(self) -> etree._Element | None:
-        return self.element.find("inertial")
+        """The first ``<inertial>`` (the one urdfdom reads)."""
+        return (self._parts or self._read())[0]
 
     @property
     def visuals(self) -> list[etree._Element]:
-        return children(self.element, "visual")
+        return (self._parts or self._read())[1]
 
     @property
     def collisions(self) -> list[etree._Element]:
-        return children(self.element, "collision")
+        return (self._parts or self._read())[2]
 
     def __repr__(self) -> str:
         return f"Link({self.name!r})"
 
 
 class Joint:
-    __slots__ = ("child", "element", "name", "parent", "type")
+    """A ``<joint>`` with its name, type, parent and child link; :meth:`find` reads the first
+    child of each tag once."""
+
+    __slots__ = ("_first", "child", "element", "name", "parent", "type")
 
     def __init__(self, element: etree._Element) -> None:
         self.element = element
         self.name: str | None = element.get("name")
         self.type: str | None = element.get("type")
-        parent = element.find("parent")
-        child = element.find("child")
+        first: dict[str, etree._Element] = {}
+        for el in element:
+            tag = el.tag
+            if isinstance(tag, str) and tag not in first:
+                first[tag] = el
+        self._first = first
+        parent = first.get("parent")
+        child = first.get("child")
         self.parent: str | None = parent.get("link") if parent is not None else None
         self.child: str | None = child.get("link") if child is not None else None
 
     def find(self, tag: str) -> etree._Element | None:
+        """The first child element ``<tag>`` (``element.find(tag)`` for a plain tag name)."""
+        if tag.isidentifier():
+            return self._first.get(tag)
         return self.element.find(tag)
 
     def __repr__(self) -> str:
@@ -165,6 +209,12 @@ class Document:
         if self.root is None:
             raise RuntimeError("document is not a usable <robot>")
         return self.root
+
+    @cached_property
+    def memo(self) -> dict[str, Any]:
+        """What the model and source helpers compute once per document (dropped with it;
+        per-element results are in :mod:`urdflint.model.memo`)."""
+        return {}
 
     @cached_property
     def lines(self) -> list[bytes]:

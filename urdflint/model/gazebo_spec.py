@@ -16,11 +16,11 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
-from weakref import WeakKeyDictionary
 
 from lxml import etree
 
 from urdflint.model.document import Document, Joint, children
+from urdflint.model.memo import once, table
 from urdflint.model.spelling import distance, near_miss, suggest
 from urdflint.model.values import fmt, has_xacro, parse_number, parse_numbers
 
@@ -149,8 +149,13 @@ def scopes_of(doc: Document, gazebo: etree._Element) -> frozenset[str] | None:
 
 
 def keys_of(gazebo: etree._Element) -> list[etree._Element]:
-    """Plain (non-namespaced) element children of a ``<gazebo>`` block."""
-    return [c for c in children(gazebo) if isinstance(c.tag, str) and not c.tag.startswith("{")]
+    """Plain (non-namespaced) element children of a ``<gazebo>`` block (read once; the list
+    is shared: do not change it)."""
+    found = table(gazebo, "gazebo.keys")
+    keys = found.get(gazebo)
+    if keys is None:
+        keys = found[gazebo] = [c for c in children(gazebo) if not c.tag.startswith("{")]
+    return keys  # type: ignore[no-any-return]
 
 
 UNRESOLVED = frozenset({LINK, JOINT})  # a dangling reference was meant for a link or a joint
@@ -176,18 +181,15 @@ def block_keys(doc: Document) -> Iterator[tuple[etree._Element, frozenset[str], 
 def blocks_for(doc: Document, name: str) -> list[etree._Element]:
     """The ``<gazebo reference="name">`` blocks (indexed once per document: a rule that asks
     for every link stays linear in the number of blocks)."""
-    index = _BY_REFERENCE.get(doc)
-    if index is None:
-        index = {}
-        for block in doc.gazebo:
-            index.setdefault(block.get("reference"), []).append(block)
-        _BY_REFERENCE[doc] = index
+    index = once(doc.robot, "gazebo.by_reference", lambda: _by_reference(doc))
     return list(index.get(name, ()))
 
 
-_BY_REFERENCE: WeakKeyDictionary[Document, dict[str | None, list[etree._Element]]] = (
-    WeakKeyDictionary()
-)
+def _by_reference(doc: Document) -> dict[str | None, list[etree._Element]]:
+    index: dict[str | None, list[etree._Element]] = {}
+    for block in doc.gazebo:
+        index.setdefault(block.get("reference"), []).append(block)
+    return index
 
 
 def value_of(el: etree._Element) -> str:

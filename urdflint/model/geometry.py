@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from lxml import etree
 
 from urdflint.model.document import children
+from urdflint.model.memo import table
 from urdflint.model.values import number, vector
 
 SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")
@@ -47,13 +48,26 @@ class Shape:
 
 
 def shape_elements(owner: etree._Element) -> list[etree._Element]:
-    """The shape children of ``owner``'s ``<geometry>`` (0, 1 or several)."""
-    geometry = owner.find("geometry")
-    return [] if geometry is None else children(geometry)
+    """The shape children of ``owner``'s ``<geometry>`` (0, 1 or several; read once)."""
+    found = table(owner, "geometry.elements")
+    elements = found.get(owner)
+    if elements is None:
+        geometry = owner.find("geometry")
+        elements = found[owner] = [] if geometry is None else children(geometry)
+    return elements
 
 
 def read_shape(owner: etree._Element) -> Shape | None:
-    """The shape of a ``<visual>``/``<collision>``, or ``None`` unless exactly one known shape."""
+    """The shape of a ``<visual>``/``<collision>``, or ``None`` unless exactly one known shape
+    (read once per element)."""
+    found = table(owner, "geometry.shape")
+    if owner in found:
+        return found[owner]  # type: ignore[no-any-return]
+    shape = found[owner] = _read_shape(owner)
+    return shape
+
+
+def _read_shape(owner: etree._Element) -> Shape | None:
     elements = shape_elements(owner)
     if len(elements) != 1 or elements[0].tag not in SHAPES:
         return None
@@ -82,6 +96,12 @@ def read_shape(owner: etree._Element) -> Shape | None:
 
 
 def shapes(link: etree._Element, tag: str = "collision") -> list[Shape]:
-    """Readable shapes of a link's ``<collision>`` (or ``<visual>``) elements."""
-    found = (read_shape(owner) for owner in children(link, tag))
-    return [s for s in found if s is not None]
+    """Readable shapes of a link's ``<collision>`` (or ``<visual>``) elements (read once;
+    the list is shared: do not change it)."""
+    found = table(link, "geometry.shapes")
+    key = (link, tag)
+    listed = found.get(key)
+    if listed is None:
+        read = (read_shape(owner) for owner in children(link, tag))
+        listed = found[key] = [s for s in read if s is not None]
+    return listed  # type: ignore[no-any-return]

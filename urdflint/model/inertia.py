@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from urdflint.model import optional
+from urdflint.model.document import children
 from urdflint.model.geometry import Shape, shapes
 from urdflint.model.providers import provided
 from urdflint.model.values import number, vector
@@ -81,16 +82,26 @@ def matrix(t: tuple[float, ...]) -> Mat:
 
 
 def matmul(a: Mat, b: Mat) -> Mat:
-    rows = (tuple(sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)) for i in range(3))
-    return tuple(rows)  # type: ignore[return-value]
+    # sum() of a tuple rather than of a generator: the same additions in the same order
+    # (Python 3.12's compensated float sum included), without a generator per entry
+    (b00, b01, b02), (b10, b11, b12), (b20, b21, b22) = b
+    return tuple(  # type: ignore[return-value]
+        (
+            sum((x * b00, y * b10, z * b20)),
+            sum((x * b01, y * b11, z * b21)),
+            sum((x * b02, y * b12, z * b22)),
+        )
+        for x, y, z in a
+    )
 
 
 def transpose(a: Mat) -> Mat:
-    return tuple(tuple(a[j][i] for j in range(3)) for i in range(3))  # type: ignore[return-value]
+    return tuple(zip(*a, strict=True))  # type: ignore[return-value]
 
 
 def apply(a: Mat, v: Vec) -> Vec:
-    return tuple(sum(a[i][k] * v[k] for k in range(3)) for i in range(3))  # type: ignore[return-value]
+    x, y, z = v
+    return tuple(sum((r[0] * x, r[1] * y, r[2] * z)) for r in a)  # type: ignore[return-value]
 
 
 def rotate(tensor: Mat, r: Mat) -> Mat:
@@ -135,7 +146,20 @@ def eigenvalues(a: Mat) -> Vec:
 
 
 def principal_moments(tensor: tuple[float, ...]) -> Vec:
-    return eigenvalues(matrix(tensor))
+    """The eigenvalues of a link's tensor, computed once: several rules ask for the same
+    link's. A cached entry serves only the very tuple it was computed for (equal tuples may
+    differ in the sign of a zero, which the moments can keep)."""
+    found = _MOMENTS.get(tensor)
+    if found is not None and found[0] is tensor:
+        return found[1]
+    moments = eigenvalues(matrix(tensor))
+    if len(_MOMENTS) >= 4096:
+        _MOMENTS.clear()
+    _MOMENTS[tensor] = (tensor, moments)
+    return moments
+
+
+_MOMENTS: dict[tuple[float, ...], tuple[tuple[float, ...], Vec]] = {}
 
 
 def tolerance(moments: Vec) -> float:
@@ -211,7 +235,7 @@ def primitive_box(
     """Union box of the link's shapes under ``tags``; ``None`` unless all are valid primitives."""
     boxes: list[tuple[Vec, Vec]] = []
     for tag in tags:
-        owners = link.findall(tag)
+        owners = children(link, tag)
         found = [aabb(s) for s in shapes(link, tag)]
         if len(found) != len(owners) or any(b is None for b in found):
             return None
@@ -273,7 +297,7 @@ def geometry_box(
     boxes: list[tuple[Vec, Vec]] = []
     readable = None
     for tag in tags:
-        owners = link.findall(tag)
+        owners = children(link, tag)
         found = shapes(link, tag)
         if len(found) != len(owners):
             return None

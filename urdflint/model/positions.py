@@ -15,17 +15,20 @@ ATTR_RE = re.compile(rb"""\s([^\s=/>]+)\s*=\s*(?:"[^"]*"|'[^']*')""")
 TAG_END_RE = re.compile(rb"""(?:"[^"]*"|'[^']*'|[^'">])*>""")
 
 
+NEWLINE_RE = re.compile(rb"\n")
+_LAST: list[tuple[bytes, list[int]]] = []  # the last text indexed: a document and its fixes
+
+
 class Lines:
     """Line starts of a byte string: offsets to 1-based (line, character column)."""
 
     def __init__(self, data: bytes) -> None:
         self.data = data
-        starts = [0]
-        index = data.find(b"\n")
-        while index >= 0:
-            starts.append(index + 1)
-            index = data.find(b"\n", index + 1)
-        self.starts = starts
+        if _LAST and _LAST[0][0] is data:
+            self.starts = _LAST[0][1]
+            return
+        self.starts = [0] + [m.end() for m in NEWLINE_RE.finditer(data)]
+        _LAST[:] = [(data, self.starts)]
 
     def position(self, offset: int) -> tuple[int, int]:
         line = bisect.bisect_right(self.starts, offset)

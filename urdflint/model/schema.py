@@ -16,9 +16,11 @@ import enum
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import NamedTuple
 
 from lxml import etree
 
+from urdflint.model.memo import once
 from urdflint.model.values import parse_number
 
 
@@ -29,6 +31,8 @@ class Kind(enum.Enum):
     NUMBER = 1
     VECTOR3 = 3
     RGBA = 4
+
+    __hash__ = object.__hash__  # members are singletons (the number caches key on them)
 
     @property
     def arity(self) -> int:
@@ -143,13 +147,15 @@ def is_foreign(el: etree._Element) -> bool:
     return isinstance(el.tag, str) and el.tag.startswith("{") and not is_xacro(el)
 
 
-@dataclass(frozen=True, slots=True)
-class Visit:
+class Visit(NamedTuple):
     """One element met by :func:`walk`: its spec key, or ``None`` if URDF does not define it."""
 
     element: etree._Element
     key: str | None
     parent_key: str
+
+
+_visit = tuple.__new__  # Visit(...) without the named tuple's Python-level __new__
 
 
 def walk(robot: etree._Element) -> Iterator[Visit]:
@@ -161,41 +167,47 @@ def walk(robot: etree._Element) -> Iterator[Visit]:
     stack: list[tuple[etree._Element, str]] = [(robot, "robot")]
     while stack:
         node, key = stack.pop()
-        spec = SPECS[key]
+        known = SPECS[key].children
         for child in node:
-            if not isinstance(child.tag, str) or child.tag.startswith("{"):
+            tag = child.tag
+            if not isinstance(tag, str) or tag.startswith("{"):
                 continue
-            child_key = spec.children.get(child.tag)
+            child_key = known.get(tag)
             if child_key == OPAQUE:
                 continue
-            yield Visit(child, child_key, key)
+            yield _visit(Visit, (child, child_key, key))
             if child_key is not None:
                 stack.append((child, child_key))
 
 
-def attributes(robot: etree._Element) -> list[tuple[etree._Element, str, Kind]]:
-    """``(element, attribute, kind)`` for each typed attribute present on a known element.
+def visits(robot: etree._Element) -> list[Visit]:
+    """:func:`walk` of ``robot`` as a list, computed once per document (X004, X005, X007
+    and X013 read it)."""
+    return once(robot, "schema.visits", lambda: list(walk(robot)))
 
-    Computed once per ``<robot>`` (X004 and X005 both read it).
-    """
-    cached = _ATTRIBUTES.get(robot)
-    if cached is not None and cached[0] is robot:
-        return cached[1]
+
+def attributes(robot: etree._Element) -> list[tuple[etree._Element, str, Kind]]:
+    """``(element, attribute, kind)`` for each typed attribute present on a known element."""
+    return [(el, attr, kind) for el, attr, kind, _ in typed_values(robot)]
+
+
+def typed_values(robot: etree._Element) -> list[tuple[etree._Element, str, Kind, str]]:
+    """``(element, attribute, kind, value)`` for each typed attribute present on a known
+    element, in document order; computed once per document (X004 and X005 both read it)."""
+    return once(robot, "schema.typed_values", lambda: _typed_values(robot))
+
+
+def _typed_values(robot: etree._Element) -> list[tuple[etree._Element, str, Kind, str]]:
     found = []
-    for visit in walk(robot):
+    for visit in visits(robot):
         if visit.key is None:
             continue
+        get = visit.element.get
         for attr, kind in SPECS[visit.key].attrs.items():
-            if visit.element.get(attr) is not None:
-                found.append((visit.element, attr, kind))
-    _ATTRIBUTES.clear()  # keep only the document being linted
-    _ATTRIBUTES[robot] = (robot, found)
+            value = get(attr)
+            if value is not None:
+                found.append((visit.element, attr, kind, value))
     return found
-
-
-_ATTRIBUTES: dict[
-    etree._Element, tuple[etree._Element, list[tuple[etree._Element, str, Kind]]]
-] = {}
 
 
 def homes(tag: str) -> list[str]:

@@ -71,7 +71,7 @@ def vector(
 
 def has_xacro(text: str | None) -> bool:
     """True for ``${...}`` / ``$(...)`` left over from an unexpanded xacro file."""
-    return bool(text) and XACRO_RE.search(text or "") is not None
+    return text is not None and "$" in text and XACRO_RE.search(text) is not None
 
 
 def fmt(value: float) -> str:

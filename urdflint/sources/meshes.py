@@ -85,7 +85,6 @@ class MeshRef:
 
 
 _REFS: WeakKeyDictionary[Document, list[MeshRef]] = WeakKeyDictionary()
-_RESOLVED: WeakKeyDictionary[Document, dict[str, Resolved]] = WeakKeyDictionary()
 
 
 def references(doc: Document) -> list[MeshRef]:
@@ -95,7 +94,7 @@ def references(doc: Document) -> list[MeshRef]:
         found = []
         for link in doc.links:
             for tag in ("visual", "collision"):
-                for owner in link.element.findall(tag):
+                for owner in link.visuals if tag == "visual" else link.collisions:
                     shape = read_shape(owner)
                     if shape is None or shape.kind != "mesh" or not shape.filename:
                         continue
@@ -117,7 +116,15 @@ class FileRef:
 
 def textures(doc: Document) -> list[FileRef]:
     """Every ``<texture filename>`` of a robot-level or a visual's ``<material>``, in
-    document order (empty and xacro filenames are skipped)."""
+    document order (empty and xacro filenames are skipped; read once per document, the list
+    is shared: do not change it)."""
+    found = doc.memo.get("meshes.textures")
+    if found is None:
+        found = doc.memo["meshes.textures"] = _textures(doc)
+    return found  # type: ignore[no-any-return]
+
+
+def _textures(doc: Document) -> list[FileRef]:
     found: list[FileRef] = []
     owners = [(m, f"material {q(m.get('name'))}") for m in doc.materials]
     for link in doc.links:
@@ -135,7 +142,9 @@ def textures(doc: Document) -> list[FileRef]:
 
 def resolved(doc: Document, uri: str) -> Resolved:
     """Where ``uri`` points for this document (cached per document)."""
-    cache = _RESOLVED.setdefault(doc, {})
+    cache = doc.memo.get("meshes.resolved")
+    if cache is None:
+        cache = doc.memo["meshes.resolved"] = {}
     answer = cache.get(uri)
     if answer is None:
         answer = cache[uri] = doc.resolver.resolve(uri)

@@ -141,7 +141,15 @@ def written(doc: Document, el: etree._Element, attribute: str) -> Written:
 
 
 def file_references(doc: Document) -> list[FileRef]:
-    """Every mesh (visual and collision) and texture reference, meshes first."""
+    """Every mesh (visual and collision) and texture reference, meshes first (listed once per
+    document; the list is shared: do not change it)."""
+    found = doc.memo.get("package_xml.file_references")
+    if found is None:
+        found = doc.memo["package_xml.file_references"] = _file_references(doc)
+    return found  # type: ignore[no-any-return]
+
+
+def _file_references(doc: Document) -> list[FileRef]:
     meshes = [
         FileRef(ref.element, ref.uri, f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}")
         for ref in references(doc)

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cache
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -29,6 +30,7 @@ if TYPE_CHECKING:
 
 MOVING = ("revolute", "continuous", "prismatic")
 MAX_PAIRS = 5000  # candidate pairs measured exactly (a real robot has tens to hundreds)
+CHUNK = 1 << 20  # box pairs the broad phase tests in one numpy expression
 
 
 @dataclass(frozen=True, slots=True)
@@ -100,21 +102,23 @@ def transform(xyz: tuple[float, ...], rpy: tuple[float, ...]) -> np.ndarray:
         math.cos(y),
         math.sin(y),
     )
-    matrix = np.eye(4)
-    matrix[:3, :3] = [
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-    ]
-    matrix[:3, 3] = xyz
-    return matrix
+    x, y, z = xyz
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, y],
+            [-sp, cp * sr, cp * cr, z],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+        dtype=float,
+    )
 
 
 def _motion(joint: Joint, value: float) -> np.ndarray:
     """The joint's own motion at ``value``: a rotation or a translation along its axis."""
-    matrix = np.eye(4)
     if value == 0.0 or joint.type not in MOVING:
-        return matrix
+        return _still()
+    matrix = np.eye(4)
     axis = np.array(vector(joint.find("axis"), "xyz", 3, (1.0, 0.0, 0.0)) or (0.0, 0.0, 0.0))
     norm = float(np.linalg.norm(axis))
     if not norm > 0 or not math.isfinite(norm):
@@ -126,6 +130,14 @@ def _motion(joint: Joint, value: float) -> np.ndarray:
     k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
     matrix[:3, :3] = np.eye(3) + math.sin(value) * k + (1 - math.cos(value)) * (k @ k)
     return matrix
+
+
+@cache
+def _still() -> np.ndarray:
+    """The motion of a joint at rest: the identity, shared and read-only."""
+    identity = np.eye(4)
+    identity.flags.writeable = False
+    return identity
 
 
 def link_poses(doc: Document, values: dict[str, float]) -> dict[str, np.ndarray]:
@@ -256,26 +268,64 @@ def exempt_pairs(
 
 
 def candidates(shapes: list[Placed], margin: float) -> list[tuple[int, int]]:
-    """Index pairs whose world boxes overlap by ``margin`` or more on every axis (sweep and
-    prune along the axis the boxes spread most on, so a long chain stays near linear): a
-    pair that interpenetrates by ``margin`` has such boxes."""
+    """Index pairs whose world boxes overlap by ``margin`` or more on every axis: a pair that
+    interpenetrates by ``margin`` has such boxes.
+
+    Sweep and prune, vectorised: boxes sorted by their low end along the axis they spread
+    most on; each box is tested at once against the block of later boxes that start before
+    it ends there (a binary search), in chunks of at most :data:`CHUNK` pairs. The time is
+    ``O(n log n)`` plus the count of pairs overlapping along that one axis."""
     if not shapes:
         return []
     boxes = [s.world_box() for s in shapes]
     lo = np.array([b[0] for b in boxes])
     hi = np.array([b[1] for b in boxes])
     axis = int(np.argmax(np.ptp(lo + hi, axis=0)))
-    order = np.argsort(lo[:, axis])
+    order = np.argsort(lo[:, axis], kind="stable")
+    lo, hi = lo[order], hi[order]
+    start = lo[:, axis]
+    # a superset of the block: the exact test below decides, so rounding here only widens
+    bound = hi[:, axis] - margin
+    bound = bound + 1e-9 * (np.abs(bound) + abs(margin) + 1.0)
+    ends = np.searchsorted(start, np.where(np.isnan(bound), -np.inf, bound), side="right")
+    counts = np.maximum(ends - np.arange(1, len(shapes) + 1), 0)  # later boxes in the block
+    found = [_block_pairs(lo, hi, counts, p, q, margin) for p, q in _chunks(counts.tolist())]
+    if not found:
+        return []
+    a = order[np.concatenate([rows for rows, _ in found])]
+    b = order[np.concatenate([cols for _, cols in found])]
+    first, second = np.minimum(a, b), np.maximum(a, b)
+    return sorted(zip(first.tolist(), second.tolist(), strict=True))
+
+
+def _chunks(counts: list[int]) -> list[tuple[int, int]]:
+    """Runs ``[p, q)`` of boxes whose blocks hold at most :data:`CHUNK` pairs together (one
+    box alone when its block is larger); runs without any pair are left out."""
     found: list[tuple[int, int]] = []
-    active: list[int] = []
-    for i in order:
-        active = [j for j in active if hi[j, axis] - lo[i, axis] >= margin]
-        for j in active:
-            reach = np.minimum(hi[i], hi[j]) - np.maximum(lo[i], lo[j])
-            if (reach >= margin).all():
-                found.append((min(i, j), max(i, j)))
-        active.append(int(i))
-    return sorted(found)
+    p = 0
+    while p < len(counts):
+        total, q = counts[p], p + 1
+        while q < len(counts) and total + counts[q] <= CHUNK:
+            total += counts[q]
+            q += 1
+        if total:
+            found.append((p, q))
+        p = q
+    return found
+
+
+def _block_pairs(
+    lo: np.ndarray, hi: np.ndarray, counts: np.ndarray, p: int, q: int, margin: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs ``(i, j)`` (sorted positions) of boxes ``p <= i < q`` and the boxes of their
+    blocks (``i < j <= i + counts[i]``) that overlap by ``margin`` on every axis."""
+    run = counts[p:q]
+    rows = np.repeat(np.arange(p, q), run)
+    offsets = np.arange(len(rows)) - np.repeat(np.cumsum(run) - run, run)  # 0, 1.. per row
+    cols = rows + 1 + offsets
+    reach = np.minimum(hi[rows], hi[cols]) - np.maximum(lo[rows], lo[cols])
+    keep = (reach >= margin).all(axis=1)
+    return rows[keep], cols[keep]
 
 
 def overlaps(
