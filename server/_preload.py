@@ -22,6 +22,8 @@ registry.load_rules()
 for _name in ("xacro", "numpy", "trimesh", "yourdfpy", "collada", "pinocchio",
               "urdflint.engine.physics", "urdflint.sources.meshes", "urdflint.sources.xacro",
               "urdflint.outputs.info", "urdflint.outputs.svg", "urdflint.outputs.formatters.json",
+              "urdflint.outputs.scene", "urdflint.outputs.scene_meshes",
+              "urdflint.sources.self_collision",
               "urdflint.outputs.formatters.sarif"):  # fmt: skip
     with contextlib.suppress(Exception):
         importlib.import_module(_name)

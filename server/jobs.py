@@ -53,6 +53,7 @@ class CheckJob:
     timeout: float = 60.0  # the job's time limit: the engines (``confirm``) must fit in it
     fix: bool = False  # POST /v1/fix: fix the upload first, answer the fixed text and diff
     unsafe_fixes: bool = False  # ... with the fixes that change the physics too
+    scene: bool = False  # add the robot as a 3D scene (``scene`` option)
 
 
 @dataclass(frozen=True)
@@ -186,6 +187,10 @@ def _answer(job: CheckJob, result: Result, scrub: Scrub) -> dict[str, Any]:
         picture = _svg(doc, findings)
         if picture is not None:
             data["svg"] = {job.name: picture}
+    if job.scene and doc is not None:
+        scene = _scene(doc, findings, Path(job.folder) / "files", scrub)
+        if scene is not None:
+            data["scene"] = {job.name: scene}
     return reply(200, data)
 
 
@@ -213,6 +218,24 @@ def _svg(doc: Any, findings: list[Any]) -> str | None:
     except Exception:  # a picture must never cost the findings
         log.warning("the kinematic tree picture failed:\n%s", traceback.format_exc())
         return None
+
+
+def _scene(doc: Any, findings: list[Any], root: Path, scrub: Scrub) -> dict[str, Any] | None:
+    """The robot as a 3D scene (meshes read inside ``root`` only; why one is missing told
+    without the server's folders), or ``None``."""
+    try:
+        from urdflint.outputs.scene import build_scene  # type: ignore[attr-defined,unused-ignore]
+    except ImportError:
+        return None
+    try:
+        with contextlib.chdir(root):
+            scene = build_scene(doc, findings)
+    except Exception:  # a picture must never cost the findings
+        log.warning("the 3D scene failed:\n%s", traceback.format_exc())
+        return None
+    if scene is not None:  # the meshes' base64 holds no text worth scrubbing
+        scene.update({key: scrub.value(scene[key]) for key in ("links", "joints", "notes")})
+    return scene
 
 
 class Scrub:

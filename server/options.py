@@ -24,6 +24,13 @@ are applied by the CLI's own :class:`~urdflint.engine.options.SettingsFinder`, s
                          server's disk
 ``format``               json (default) | sarif | text | github
 ``svg``                  true to add ``"svg": {file: "<svg ...>"}`` (the kinematic tree)
+``scene``                true to add ``"scene": {file: {...}}``: the robot in 3D at the zero
+                         pose (or ``q``) for the web page's view: each link's world pose,
+                         visual and collision shapes (meshes from the zip as base64
+                         float32 vertices and uint16/uint32 triangles, simplified past a
+                         total triangle budget), centre of mass, equivalent inertia box,
+                         the joints' axes and the indices of each one's findings
+                         (``urdflint.outputs.scene``)
 ``matrix``               true to add ``"matrix"``: one row per target saying whether it loads
                          the model, loads it with changes, refuses it or crashes, and the
                          findings that decide it (as ``urdflint check --matrix``; without a
@@ -66,7 +73,7 @@ from urdflint.model import targets
 LISTS = ("select", "ignore", "target", "xacro_args", "q", "confirm")
 SCALARS = (
     "fail_on", "expect_mass", "expect_com", "config", "format", "svg", "matrix", "filename",
-    "unsafe_fixes",
+    "unsafe_fixes", "scene",
 )  # fmt: skip
 ALIASES = {"targets": "target", "xacro_arg": "xacro_args", "fail": "fail_on"}
 FORMATS = ("json", "sarif", "text", "github")
@@ -92,6 +99,7 @@ class Options:
     matrix: bool = False
     fix: bool = False  # POST /v1/fix: apply the automatic fixes to the upload
     unsafe_fixes: bool = False  # ... the ones that change the physics too
+    scene: bool = False  # add the 3D scene (``scene`` option)
 
 
 def canonical(name: str) -> str | None:
@@ -254,4 +262,5 @@ def parse(
         raise OptionError(NO_CONFIRM)
     if matrix and not target and settings.targets == targets.DEFAULT_TARGETS:
         settings = dataclasses.replace(settings, targets=tuple(targets.TARGETS))  # every row
-    return Options(settings, fmt, svg, _last(values, "filename"), matrix, fix, unsafe)
+    scene = _flag(values, "scene")
+    return Options(settings, fmt, svg, _last(values, "filename"), matrix, fix, unsafe, scene)

@@ -30,6 +30,11 @@ from .routing import error, limits_of, pool_of
 from .uploads import ZipLimits, urdf_name
 
 XML_TYPES = ("application/xml", "text/xml")
+SCENE_HELP = (
+    "true: add the robot as a 3D scene at the zero pose (or q): link poses, visual and "
+    "collision shapes, meshes (base64, within a triangle budget), centres of mass, "
+    "equivalent inertia boxes, joint axes and which findings each link has"
+)
 TARGET_HELP = "|".join((*targets.TARGETS, targets.ALL))
 FORM_FIELD_BYTES = 128 * 1024
 NOT_UTF8 = (
@@ -65,6 +70,11 @@ CHECK_BODY = {
                     "xacro_args": {"type": "string"},
                     "config": {"type": "string", "description": "JSON, [tool.urdflint] keys"},
                     "svg": {"type": "boolean"},
+                    "scene": {
+                        "type": "boolean",
+                        "description": "add the robot as a 3D scene (poses, shapes, meshes, "
+                        "centres of mass, inertia boxes, joint axes) for the web page",
+                    },
                     "matrix": {
                         "type": "boolean",
                         "description": "add what each target does with the model",
@@ -113,6 +123,7 @@ async def check(
     config: Annotated[str | None, Query(description="JSON object of [tool.urdflint] keys")] = None,
     format: Annotated[str, Query(description="json|sarif|text|github")] = "json",
     svg: Annotated[str | None, Query(description="true: add the kinematic tree as SVG")] = None,
+    scene: Annotated[str | None, Query(description=SCENE_HELP)] = None,
     matrix: Annotated[
         str | None, Query(description="true: add what each target does with the model")
     ] = None,
@@ -235,6 +246,7 @@ async def _lint(
             timeout=limits.timeout,
             fix=options.fix,
             unsafe_fixes=options.unsafe_fixes,
+            scene=options.scene,
         )
         try:
             answer = await pool.run(job)

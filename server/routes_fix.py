@@ -17,7 +17,7 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Query, Request
 from fastapi.responses import Response
 
-from .routes_check import CHECK_BODY, TARGET_HELP, handle
+from .routes_check import CHECK_BODY, SCENE_HELP, TARGET_HELP, handle
 
 
 def _body() -> dict[str, Any]:
@@ -72,6 +72,7 @@ async def fix(
     q: Annotated[list[str] | None, Query(description="JOINT=VALUE positions for mass/COM")] = None,
     config: Annotated[str | None, Query(description="JSON object of [tool.urdflint] keys")] = None,
     svg: Annotated[str | None, Query(description="true: add the kinematic tree as SVG")] = None,
+    scene: Annotated[str | None, Query(description=SCENE_HELP)] = None,
     matrix: Annotated[
         str | None, Query(description="true: add what each target does with the model")
     ] = None,

@@ -4,6 +4,10 @@
 // Blob URL download (no markup is ever built from it).
 // The tree SVG is parsed as XML and rebuilt from an allowlist of elements and
 // attributes (see cleanSvg), so even a broken server could not inject script.
+// The outline (outline.js) and the 3D view (scene.js) are modules fed through events on
+// document: "urdflint:results" carries the answer's scene; "urdflint:select" {link, from}
+// is sent by whichever part the reader clicks (a finding row, the outline, the diagram,
+// the 3D view) and every part shows that link.
 "use strict";
 
 (function () {
@@ -39,6 +43,11 @@
   // what the server offers (GET /v1/capabilities): confirm, the engines, target -> engine
   const offer = { confirm: false, installed: [], engineOf: {} };
   let download = null; // the Blob URL of the fixed file, revoked when replaced
+  let linkOf = []; // finding index -> the link it belongs to (from the scene), or undefined
+  let rowIds = []; // finding index -> its row's id
+  const picked = { scene: null, findings: [] }; // what the selected link's box reads
+  const LEGIBLE = 0.8; // the diagram is never shrunk below this (labels of about 9 px)
+  const BIG_TREE = 40; // links past which the diagram starts folded (the outline reads better)
 
   function el(tag, attrs, ...children) {
     const node = document.createElement(tag);
@@ -85,12 +94,13 @@
       name = /xmlns:xacro\s*=/.test(text) ? "pasted.urdf.xacro" : "pasted.urdf";
       data.append("urdf", new Blob([text], { type: "application/xml" }), name);
     }
-    for (const id of ["target", "fail-on", "select", "ignore", "expect-mass", "expect-com", "xacro-args"]) {
+    for (const id of ["target", "fail-on", "select", "ignore", "expect-mass", "expect-com", "xacro-args", "q"]) {
       const input = $(id);
       const value = input.value.trim();
       if (value) data.append(input.name, value);
     }
     data.append("svg", "true");
+    data.append("scene", "true");
     if ($("want-matrix").checked) data.append("matrix", "true");
     const engines = confirmEngines();
     if (engines.length && $("want-confirm").checked && !$("confirm-field").hidden) {
@@ -163,6 +173,7 @@
       } catch (ignored) {
         payload = null;
       }
+      const started = performance.now(); // the 3D view says how long it took from here
       if (!response.ok) {
         const detail = payload && typeof payload.detail === "string" ? payload.detail
           : payload && Array.isArray(payload.detail) ? payload.detail.map((d) => d.msg || "").join("; ")
@@ -176,7 +187,7 @@
         showError("The server sent an answer this page does not understand.");
         return;
       }
-      render(payload, asked);
+      render(payload, asked, started);
       renderFix(fixing ? payload : null, name, unsafe);
       $("status").textContent = "Done.";
       $("results").scrollIntoView({ behavior: "smooth", block: "start" });
@@ -206,7 +217,7 @@
 
   // -- results --------------------------------------------------------------------------
 
-  function render(doc, asked) {
+  function render(doc, asked, started) {
     const summary = doc.summary || {};
     const passed = doc.passed === true;
     const banner = $("banner");
@@ -220,12 +231,20 @@
         `${n} ${n === 1 ? sev : PLURAL[sev]}`);
     }));
     renderModels(doc.models || {});
+    const scene = firstScene(doc.scene);
+    linkOf = linksOfFindings(doc.findings, scene);
     const anchors = renderFindings(doc.findings, paths[0]);
     renderMatrix(Array.isArray(doc.matrix) ? doc.matrix : [], !!(asked && asked.matrix), anchors);
     renderTrees(doc.svg || {});
     $("results").hidden = false;
     zoom("auto"); // after showing the results: fitting needs the box's width
     centreOnRoot();
+    picked.scene = scene;
+    picked.findings = doc.findings;
+    showPicked(null);
+    document.dispatchEvent(new CustomEvent("urdflint:results", {
+      detail: { scene, findings: doc.findings, rows: rowIds, started },
+    }));
   }
 
   function renderModels(models) {
@@ -264,6 +283,8 @@
 
   function renderFindings(findings, upload) {
     const table = $("findings");
+    rowIds = [];
+    const indexOf = new Map(findings.map((f, i) => [f, i]));
     table.querySelectorAll("tbody").forEach((body) => body.remove());
     $("no-findings").hidden = findings.length > 0;
     table.hidden = findings.length === 0;
@@ -292,13 +313,15 @@
         if (f.fix) problem.append(el("p", { class: "fix" }, f.fix));
         const line = many ? `${f.path}:${f.line}` : f.line;
         const id = `finding-${++count}`;
+        rowIds[indexOf.get(f)] = id;
         for (const key of [anchorKey(f, true), anchorKey(f, false)]) {
           if (!anchors.has(key)) anchors.set(key, id);
         }
+        const link = linkOf[indexOf.get(f)];
         body.append(el("tr", {
           id: id, tabindex: "-1",
           class: "finding", "data-code": f.code, "data-line": f.line, "data-severity": f.severity,
-          "data-element": f.element,
+          "data-element": f.element, "data-link": link, title: link ? `Click to show link ‘${link}’ in the 3D view and the tree` : null,
         }, el("td", { class: "num" }, line), code, el("td", { class: "element" }, ...breakable(f.element)), problem));
       }
       table.append(body);
@@ -453,6 +476,87 @@
     return parts;
   }
 
+  // -- the selected link: the 3D view, the outline, the diagram and the rows agree ----------
+
+  function firstScene(scenes) {
+    if (!scenes || typeof scenes !== "object") return null;
+    const found = Object.values(scenes)[0];
+    return found && typeof found === "object" && Array.isArray(found.links) ? found : null;
+  }
+
+  function linksOfFindings(findings, scene) {
+    // each finding's link: the scene lists each link's findings (its joints' included)
+    const found = [];
+    if (!scene) return found;
+    for (const link of scene.links) {
+      for (const index of Array.isArray(link.findings) ? link.findings : []) {
+        if (found[index] === undefined) found[index] = link.name;
+      }
+    }
+    return found;
+  }
+
+  function select(link, from) {
+    document.dispatchEvent(new CustomEvent("urdflint:select", { detail: { link, from } }));
+  }
+
+  function onSelect(event) {
+    const name = event.detail && event.detail.link;
+    document.querySelectorAll("#findings tr.of-selected").forEach((tr) => tr.classList.remove("of-selected"));
+    document.querySelectorAll("#tree g.link.selected").forEach((g) => g.classList.remove("selected"));
+    if (name) {
+      document.querySelectorAll("#findings tr.finding").forEach((tr) => {
+        if (tr.dataset.link === name) tr.classList.add("of-selected");
+      });
+      document.querySelectorAll("#tree g.link").forEach((g) => {
+        if (g.getAttribute("data-link") === name) g.classList.add("selected");
+      });
+    }
+    showPicked(name);
+  }
+
+  function showPicked(name) {
+    // the selected link, under the 3D view: its mass, centre of mass, inertia box, findings
+    const box = $("picked");
+    const link = name && picked.scene ? picked.scene.links.find((l) => l.name === name) : null;
+    box.hidden = !link;
+    box.replaceChildren();
+    if (!link) return;
+    const facts = [];
+    const inertial = link.inertial;
+    if (inertial && typeof inertial.mass === "number") facts.push(`mass ${number(inertial.mass)} kg`);
+    if (inertial && Array.isArray(inertial.com)) facts.push(`centre of mass (${inertial.com.map((v) => number(v, 3)).join(", ")}) m`);
+    if (inertial && inertial.box) facts.push(`inertia box ${inertial.box.size.map((v) => number(v, 3)).join(" × ")} m${inertial.box.valid ? "" : " (impossible tensor)"}`);
+    else if (inertial && inertial.problem) facts.push(`no inertia box: ${inertial.problem}`);
+    else if (!inertial) facts.push("no <inertial>");
+    box.append(el("p", { class: "picked-head" }, el("strong", {}, link.name), " ", el("span", { class: "muted" }, facts.join(" · "))));
+    const list = el("ul", { class: "deciding" });
+    for (const index of link.findings) {
+      const f = picked.findings[index];
+      if (!f) continue;
+      list.append(el("li", {}, el("a", { href: `#${rowIds[index]}`, class: "finding-link", "data-finding": rowIds[index], "data-code": f.code },
+        el("span", { class: "sev", "data-severity": f.severity }, f.severity), ` ${f.code} line ${f.line}`), " ", el("span", { class: "why" }, f.message)));
+    }
+    box.append(list.childElementCount ? list : el("p", { class: "muted" }, "No findings on this link."));
+  }
+
+  function rowClicked(event) {
+    if (event.target.closest("a, button") || String(window.getSelection() || "")) return;
+    const row = event.target.closest("tr.finding");
+    if (!row || !row.dataset.link) return;
+    document.querySelectorAll("#findings tr.highlight").forEach((tr) => tr.classList.remove("highlight"));
+    row.classList.add("highlight");
+    select(row.dataset.link, "finding");
+    const view = $("view-card");
+    const rect = view.getBoundingClientRect();
+    if (rect.bottom < 0 || rect.top > window.innerHeight) view.scrollIntoView({ behavior: "smooth", block: "start" });
+  }
+
+  function diagramClicked(event) {
+    const group = event.target.closest && event.target.closest("g.link");
+    if (group && group.getAttribute("data-kind") === "link") select(group.getAttribute("data-link"), "diagram");
+  }
+
   // -- the tree ---------------------------------------------------------------------------
 
   function cleanSvg(markup) {
@@ -485,6 +589,7 @@
     const box = $("tree");
     box.replaceChildren();
     const paths = Object.keys(svgs);
+    let links = 0;
     for (const path of paths) {
       if (paths.length > 1) box.append(el("p", { class: "tree-name" }, path));
       const svg = cleanSvg(String(svgs[path]));
@@ -493,9 +598,14 @@
         continue;
       }
       svg.dataset.naturalWidth = svg.getAttribute("width") || "0";
+      links += svg.querySelectorAll("g.link").length;
       box.append(svg);
     }
     if (!paths.length) box.append(el("p", { class: "muted" }, "No tree picture was returned."));
+    // a big robot's diagram is very wide: folded at first, the outline above reads better
+    $("diagram-card").open = links <= BIG_TREE;
+    $("diagram-hint").textContent = links > BIG_TREE
+      ? `${links} links: wide; the tree above is easier to read` : "";
   }
 
   let scale = 1;
@@ -508,8 +618,8 @@
     const room = $("tree").clientWidth - 12;
     fitting = how === "fit" || how === "auto";
     const fit = room > 0 ? Math.min(1, room / widest) : 1;
-    if (how === "fit") scale = fit;
-    else if (how === "auto") scale = Math.max(fit, 0.6); // big trees: readable, scroll the rest
+    // fitting never shrinks the labels past legible: a big tree scrolls instead
+    if (how === "fit" || how === "auto") scale = Math.max(fit, LEGIBLE);
     else if (how === "one") scale = 1;
     else if (how === "in") scale = Math.min(4, scale * 1.25);
     else if (how === "out") scale = Math.max(0.1, scale / 1.25);
@@ -518,6 +628,7 @@
       svg.style.width = `${Math.round(natural * scale)}px`;
       svg.removeAttribute("height");
     }
+    $("zoom-note").hidden = !(fitting && room > 0 && widest * scale > room + 1);
   }
 
   function centreOnRoot() {
@@ -536,6 +647,16 @@
   $("fix").addEventListener("click", () => send(true));
   $("target").addEventListener("change", () => { if (offer.confirm) showConfirm(); });
   $("matrix").addEventListener("click", goToFinding);
+  $("picked").addEventListener("click", goToFinding);
+  $("findings").addEventListener("click", rowClicked);
+  $("tree").addEventListener("click", diagramClicked);
+  document.addEventListener("urdflint:select", onSelect);
+  $("diagram-card").addEventListener("toggle", () => {
+    if ($("diagram-card").open) {
+      zoom("auto");
+      centreOnRoot();
+    }
+  });
   form.querySelectorAll("input[name=mode]").forEach((radio) => radio.addEventListener("change", showMode));
   document.querySelectorAll("[data-zoom]").forEach((button) =>
     button.addEventListener("click", () => zoom(button.dataset.zoom)));

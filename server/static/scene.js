@@ -1,0 +1,548 @@
+// urdflint web page: the robot in 3D (three.js, served from /static/vendor/three).
+// Draws the check answer's "scene" (urdflint/outputs/scene.py): every shape already placed
+// in the world (ROS: z up, metres), meshes decoded from base64, each link's centre of mass
+// as a marker and its inertia as the uniform box of the same mass and inertia (Gazebo's
+// "View > Inertia"), the joint axes as arrows, links with findings in their severity's
+// colour. Renders on demand (after a change), never in a loop.
+// Events on document: urdflint:results {scene, started} -> draw; urdflint:select {link}
+// -> highlight; a click on a link sends urdflint:select {link, from: "scene"}.
+// three.js loads on the first check (or when the form is sent), not with the page.
+
+const COLOURS = { error: "#d92d20", warning: "#dc6803", info: "#1570ef" };
+const PLAIN = "#b7bec9"; // a visual without a colour of its own
+const COLLISION = "#0e9384";
+const INERTIA = "#7a5af8";
+const COM = "#101828";
+const AXIS = "#3e4fd8";
+const GROUPS = ["visual", "collision", "inertia", "com", "axes"];
+const MARKER = 0.009; // a centre of mass's radius per metre from the camera: ~5 px, always
+const $ = (id) => document.getElementById(id);
+
+// every material the view makes, by kind; warm() draws one of each before the answer comes
+const MATERIALS = {
+  solid: (T, more) => new T.MeshPhongMaterial({ flatShading: true, side: T.DoubleSide, shininess: 25, ...more }),
+  // a collision that is its visual tints it evenly instead of fighting it for depth
+  seeThrough: (T, more) => MATERIALS.solid(T, { transparent: true, depthWrite: false, polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -1, ...more }),
+  fill: (T, more) => new T.MeshBasicMaterial({ transparent: true, depthWrite: false, polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -2, ...more }),
+  marker: (T, more) => new T.MeshBasicMaterial({ depthTest: false, ...more }),
+  edges: (T, more) => new T.LineBasicMaterial(more),
+  dashed: (T, more) => new T.LineDashedMaterial(more),
+};
+
+let loading = null; // the three.js import, once
+let view = null; // {THREE, renderer, scene, camera, controls, ...}; null when there is no WebGL
+let current = null; // the drawn robot: {groups, links: Map(name -> {objects, com}), size}
+const show = { visual: true, collision: false, com: true, inertia: "all", axes: true, findings: true };
+const MANY = 15; // links with an inertial past which only the flagged inertia boxes show at first
+const chosen = {}; // the toggles the reader changed (they keep their state between checks)
+
+function three() {
+  if (!loading) {
+    loading = Promise.all([
+      import("./vendor/three/three.module.min.js"),
+      import("./vendor/three/OrbitControls.js"),
+    ]).then(([THREE, orbit]) => ({ THREE, OrbitControls: orbit.OrbitControls }));
+  }
+  return loading;
+}
+
+function state(name, note) {
+  const box = $("view");
+  box.dataset.state = name;
+  box.querySelectorAll(".view-note").forEach((p) => p.remove());
+  if (note) box.append(Object.assign(document.createElement("p"), { className: "view-note muted", textContent: note }));
+}
+
+let gpu = null; // {software}: what the browser's WebGL 2 runs on, probed once; false: none
+
+function webgl2() {
+  if (gpu === null) {
+    try {
+      const probe = document.createElement("canvas").getContext("webgl2");
+      const named = probe && probe.getExtension("WEBGL_debug_renderer_info");
+      const name = probe ? String(probe.getParameter(named ? named.UNMASKED_RENDERER_WEBGL : probe.RENDERER)) : "";
+      gpu = probe ? { software: /swiftshader|llvmpipe|softpipe|software/i.test(name) } : false;
+      if (probe) probe.getExtension("WEBGL_lose_context")?.loseContext();
+    } catch (ignored) {
+      gpu = false;
+    }
+  }
+  return !!gpu;
+}
+
+function setUp(lib) {
+  const { THREE, OrbitControls } = lib;
+  const box = $("view");
+  // software GL (SwiftShader, llvmpipe) spends most of a frame on multisampling: off there
+  const renderer = new THREE.WebGLRenderer({ antialias: !(gpu && gpu.software) });
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+  renderer.setClearColor("#f8fafc");
+  renderer.domElement.className = "view-canvas";
+  box.append(renderer.domElement);
+  const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
+  camera.up.set(0, 0, 1);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  const scene = new THREE.Scene();
+  scene.add(new THREE.HemisphereLight("#ffffff", "#8a94a6", 2.2));
+  const sun = new THREE.DirectionalLight("#ffffff", 1.6);
+  sun.position.set(0.4, -0.6, 1);
+  camera.add(sun);
+  scene.add(camera);
+  view = { THREE, renderer, camera, controls, scene, raycaster: new THREE.Raycaster() };
+  controls.addEventListener("change", draw);
+  new ResizeObserver(resize).observe(box);
+  pickOnClick(renderer.domElement);
+  resize();
+}
+
+function warm() {
+  // while the server works, draw one of each material with each vertex layout the robot
+  // will use (primitives: position, normal, uv; meshes: position only). Software GL builds
+  // its shaders and pipelines at the first draw of each: about 1.5 s for a robot, paid here
+  const { THREE, renderer, scene, camera } = view;
+  const group = new THREE.Group();
+  const box = new THREE.BoxGeometry(0.01, 0.01, 0.01);
+  const bare = new THREE.BufferGeometry().setAttribute("position", box.getAttribute("position"));
+  bare.setIndex(box.getIndex());
+  const lines = new THREE.EdgesGeometry(box);
+  const add = (object) => { object.frustumCulled = false; group.add(object); };
+  for (const kind of ["solid", "seeThrough"]) {
+    add(new THREE.Mesh(box, MATERIALS[kind](THREE)));
+    add(new THREE.Mesh(bare, MATERIALS[kind](THREE)));
+  }
+  add(new THREE.Mesh(box, MATERIALS.fill(THREE)));
+  add(new THREE.Mesh(box, MATERIALS.marker(THREE)));
+  add(new THREE.LineSegments(lines, MATERIALS.edges(THREE)));
+  add(new THREE.LineSegments(lines, MATERIALS.dashed(THREE)).computeLineDistances());
+  for (const helper of [new THREE.ArrowHelper(), new THREE.GridHelper(0.01, 2), new THREE.Box3Helper(new THREE.Box3(new THREE.Vector3(), new THREE.Vector3(0.01, 0.01, 0.01)))]) {
+    helper.traverse((o) => { o.frustumCulled = false; });
+    group.add(helper);
+  }
+  scene.add(group);
+  camera.position.set(0.05, -0.05, 0.05);
+  camera.lookAt(0, 0, 0);
+  view.warm = renderer.compileAsync(scene, camera).catch(() => {}).then(() => {
+    renderer.render(scene, camera);
+    scene.remove(group);
+  });
+  view.warmGroup = group; // kept: its materials hold the compiled programs
+}
+
+function prepare() {
+  // the form was sent: load three.js and set the view up now, not after the answer
+  if (!webgl2()) return;
+  three().then((lib) => {
+    if (!view) {
+      setUp(lib);
+      warm();
+    }
+  }).catch(() => {});
+}
+
+function resize() {
+  if (!view) return;
+  const box = $("view");
+  const width = Math.max(1, box.clientWidth);
+  const height = Math.max(1, box.clientHeight);
+  view.renderer.setSize(width, height, false);
+  view.camera.aspect = width / height;
+  view.camera.updateProjectionMatrix();
+  draw();
+}
+
+function draw() {
+  if (!view || !current) return;
+  for (const marker of current.groups.com.children) {
+    marker.scale.setScalar(view.camera.position.distanceTo(marker.position) * MARKER);
+  }
+  view.renderer.render(view.scene, view.camera);
+}
+
+// -- building the robot -----------------------------------------------------------------------
+
+function bytes(text) {
+  const raw = atob(text);
+  const out = new Uint8Array(raw.length);
+  for (let i = 0; i < raw.length; i++) out[i] = raw.charCodeAt(i);
+  return out.buffer;
+}
+
+function meshGeometries(THREE, meshes) {
+  return meshes.map((m) => {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(bytes(m.positions)), 3));
+    const index = m.index === "u32" ? new Uint32Array(bytes(m.indices)) : new Uint16Array(bytes(m.indices));
+    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    geometry.computeBoundingSphere();
+    return geometry;
+  });
+}
+
+function primitive(THREE, shape, meshes) {
+  // the shape's geometry in its own frame (three's cylinders stand along y, URDF's along z)
+  if (shape.kind === "box") return new THREE.BoxGeometry(...shape.size);
+  if (shape.kind === "sphere") return new THREE.SphereGeometry(shape.radius, 24, 16);
+  if (shape.kind === "cylinder") return new THREE.CylinderGeometry(shape.radius, shape.radius, shape.length, 28).rotateX(Math.PI / 2);
+  if (shape.kind === "capsule") return new THREE.CapsuleGeometry(shape.radius, shape.length, 8, 20).rotateX(Math.PI / 2);
+  if (shape.kind === "mesh" && Number.isInteger(shape.mesh)) return meshes[shape.mesh] || null;
+  return null;
+}
+
+function place(object, at) {
+  object.position.set(at[0], at[1], at[2]);
+  object.quaternion.set(at[3], at[4], at[5], at[6]);
+  return object;
+}
+
+function linkColour(link, own) {
+  return show.findings && link.severity ? COLOURS[link.severity] : own || PLAIN;
+}
+
+function addShapes(robot, link, tag, meshes) {
+  const { THREE } = view;
+  for (const shape of link[tag]) {
+    const geometry = primitive(THREE, shape, meshes);
+    if (!geometry || !Array.isArray(shape.at)) continue;
+    const rgba = tag === "visual" && Array.isArray(shape.rgba) ? shape.rgba : null;
+    const own = rgba ? new THREE.Color().setRGB(rgba[0], rgba[1], rgba[2], THREE.SRGBColorSpace) : null;
+    const material = tag === "collision"
+      ? MATERIALS.seeThrough(THREE, { color: show.findings && link.severity ? COLOURS[link.severity] : COLLISION, opacity: 0.45 })
+      : MATERIALS.solid(THREE, { color: linkColour(link, own), transparent: !!rgba && rgba[3] < 1, opacity: rgba ? Math.max(0.15, rgba[3]) : 1 });
+    material.userData = { own, tag };
+    const mesh = place(new THREE.Mesh(geometry, material), shape.at);
+    mesh.userData.link = link.name;
+    robot.groups[tag].add(mesh);
+    robot.links.get(link.name).objects.push(mesh);
+  }
+}
+
+function addInertia(robot, link) {
+  const { THREE } = view;
+  const inertial = link.inertial;
+  if (!inertial || !Array.isArray(inertial.com)) return;
+  const colour = link.inertia_severity ? COLOURS[link.inertia_severity] : null;
+  const box = inertial.box;
+  if (box && box.size.some((v) => v > 0)) {
+    const size = box.size.map((v) => Math.max(v, 1e-6));
+    const geometry = new THREE.BoxGeometry(...size);
+    // front faces only: seen from inside (a box 1000x too large holds the camera), a box
+    // is its edges, not a tint over everything
+    const fill = new THREE.Mesh(geometry, MATERIALS.fill(THREE, { color: colour || INERTIA, opacity: colour ? 0.22 : 0.14 }));
+    fill.material.userData = { flagged: colour, plain: INERTIA };
+    const edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry), box.valid
+      ? MATERIALS.edges(THREE, { color: colour || INERTIA })
+      : MATERIALS.dashed(THREE, { color: colour || COLOURS.error, dashSize: robot.size / 80, gapSize: robot.size / 120 }));
+    edges.material.userData = { flagged: colour, plain: box.valid ? INERTIA : COLOURS.error };
+    robot.marks.push(fill.material, edges.material);
+    if (!box.valid) edges.computeLineDistances();
+    const group = place(new THREE.Group(), box.at);
+    group.userData.flagged = !!link.inertia_severity;
+    group.add(fill, edges);
+    fill.userData.link = link.name;
+    robot.groups.inertia.add(group);
+    robot.links.get(link.name).objects.push(fill);
+  }
+  const marker = new THREE.Group(); // unit spheres, scaled to a constant size on screen
+  const dot = new THREE.Mesh(new THREE.SphereGeometry(1, 16, 12), MATERIALS.marker(THREE, { color: colour || COM }));
+  dot.material.userData = { flagged: colour, plain: COM };
+  robot.marks.push(dot.material);
+  const halo = new THREE.Mesh(new THREE.SphereGeometry(1.45, 16, 12), MATERIALS.marker(THREE, { color: "#ffffff" }));
+  halo.renderOrder = 10;
+  dot.renderOrder = 11;
+  dot.userData.link = link.name;
+  marker.add(halo, dot);
+  marker.position.set(...inertial.com);
+  robot.groups.com.add(marker);
+  robot.links.get(link.name).com = marker.position.clone();
+}
+
+function addAxes(robot, joints) {
+  const { THREE } = view;
+  const length = robot.size / 9;
+  for (const joint of joints) {
+    if (!joint.axis) continue;
+    const colour = joint.severity ? COLOURS[joint.severity] : AXIS;
+    const arrow = new THREE.ArrowHelper(new THREE.Vector3(...joint.axis.direction),
+      new THREE.Vector3(...joint.axis.origin), length, colour, length * 0.28, length * 0.14);
+    for (const material of [arrow.line.material, arrow.cone.material]) {
+      material.userData = { flagged: joint.severity ? colour : null, plain: AXIS };
+      robot.marks.push(material);
+    }
+    arrow.line.material.depthTest = arrow.cone.material.depthTest = false;
+    arrow.renderOrder = 11;
+    robot.groups.axes.add(arrow);
+  }
+}
+
+function bounds(THREE, robot, links) {
+  // what the camera frames: the geometry, the link frames and the centres of mass (not the
+  // inertia boxes: a tensor 1000x too large must not shrink the robot to a dot)
+  const box = new THREE.Box3();
+  box.expandByObject(robot.groups.visual);
+  box.expandByObject(robot.groups.collision);
+  for (const link of links) {
+    if (Array.isArray(link.at)) box.expandByPoint(new THREE.Vector3(...link.at.slice(0, 3)));
+    if (link.inertial && Array.isArray(link.inertial.com)) box.expandByPoint(new THREE.Vector3(...link.inertial.com));
+  }
+  if (box.isEmpty()) box.set(new THREE.Vector3(-0.1, -0.1, -0.1), new THREE.Vector3(0.1, 0.1, 0.1));
+  const size = box.getSize(new THREE.Vector3());
+  if (size.length() < 0.05) box.expandByScalar(0.05);
+  return box;
+}
+
+function framed(THREE, robot) {
+  // the robot, and the inertia boxes up to 4 times its size: a box 30x its link's (a tensor
+  // 1000x too large) shows whole around the robot; a box of a tensor in g mm^2 (10^6x)
+  // would shrink the robot to a dot and is left to reach past the view
+  const box = robot.box.clone();
+  if (shown(robot.groups.axes)) box.union(new THREE.Box3().setFromObject(robot.groups.axes));
+  const limit = robot.size * 4;
+  for (const group of robot.groups.inertia.children) {
+    if (!shown(group)) continue;
+    const around = new THREE.Box3().setFromObject(group);
+    if (!around.isEmpty() && around.getSize(new THREE.Vector3()).length() <= limit) box.union(around);
+  }
+  return box;
+}
+
+function build(data) {
+  const { THREE, scene } = view;
+  if (current) dispose(current);
+  const root = new THREE.Group();
+  const robot = { root, groups: {}, links: new Map(), size: 1, selected: null, outline: null, marks: [] };
+  for (const name of GROUPS) {
+    robot.groups[name] = new THREE.Group();
+    root.add(robot.groups[name]);
+  }
+  const links = Array.isArray(data.links) ? data.links : [];
+  for (const link of links) robot.links.set(link.name, { link, objects: [], com: null });
+  const meshes = meshGeometries(THREE, Array.isArray(data.meshes) ? data.meshes : []);
+  for (const link of links) {
+    addShapes(robot, link, "visual", meshes);
+    addShapes(robot, link, "collision", meshes);
+  }
+  robot.box = bounds(THREE, robot, links);
+  robot.size = Math.max(robot.box.getSize(new THREE.Vector3()).length(), 0.05);
+  for (const link of links) addInertia(robot, link);
+  addAxes(robot, Array.isArray(data.joints) ? data.joints : []);
+  const floor = new THREE.GridHelper(robot.size * 2, 20, "#c9ced6", "#e4e7ec");
+  floor.rotation.x = Math.PI / 2;
+  floor.position.set(...robot.box.getCenter(new THREE.Vector3()).toArray().slice(0, 2), robot.box.min.z);
+  root.add(floor);
+  scene.add(root);
+  current = robot;
+  if (!chosen.collision) {
+    // by default, collisions only for a robot with links that have nothing else to show
+    setShown("collision", links.some((l) => l.collision.length && !l.visual.length), true);
+  }
+  if (!chosen.inertia) {
+    // many boxes bury the robot (and sensor frames of 1 g with a token tensor have huge
+    // ones the rules rightly skip): past MANY links, the flagged ones only
+    setShown("inertia", links.filter((l) => l.inertial).length > MANY ? "flagged" : "all", true);
+  }
+  applyShown();
+  robot.view = framed(THREE, robot);
+  frame();
+}
+
+function dispose(robot) {
+  view.scene.remove(robot.root);
+  robot.root.traverse((object) => {
+    if (object.geometry) object.geometry.dispose();
+    if (object.material) [].concat(object.material).forEach((m) => m.dispose());
+  });
+}
+
+function frame() {
+  // the whole robot, seen from the front right and a little above
+  const { THREE, camera, controls } = view;
+  const sphere = current.view.getBoundingSphere(new THREE.Sphere());
+  const radius = Math.max(sphere.radius, 0.05);
+  const fov = (camera.fov * Math.PI) / 180;
+  const distance = (radius / Math.sin(fov / 2)) * (camera.aspect < 1 ? 1 / camera.aspect : 1) * 1.05;
+  const direction = new THREE.Vector3(0.55, -1, 0.5).normalize();
+  camera.position.copy(sphere.center).addScaledVector(direction, distance);
+  camera.near = distance / 200;
+  camera.far = distance * 200;
+  camera.updateProjectionMatrix();
+  controls.target.copy(sphere.center);
+  controls.update();
+  draw();
+}
+
+// -- showing, picking, selecting -----------------------------------------------------------
+
+function setShown(name, value, quiet) {
+  show[name] = value;
+  const box = document.querySelector(`[data-show="${name}"]`);
+  if (box && box.type === "checkbox") box.checked = value;
+  else if (box) box.value = value;
+  if (!quiet) applyShown();
+}
+
+function applyShown() {
+  if (!current) return;
+  for (const name of GROUPS) current.groups[name].visible = name === "inertia" ? show.inertia !== "none" : show[name];
+  for (const group of current.groups.inertia.children) group.visible = show.inertia === "all" || group.userData.flagged;
+  for (const { link, objects } of current.links.values()) {
+    for (const object of objects) {
+      const data = object.material.userData || {};
+      if (data.tag === "visual") object.material.color.set(linkColour(link, data.own));
+      if (data.tag === "collision") object.material.color.set(show.findings && link.severity ? COLOURS[link.severity] : COLLISION);
+    }
+  }
+  for (const material of current.marks) {
+    const { flagged, plain } = material.userData;
+    material.color.set(show.findings && flagged ? flagged : plain);
+  }
+  highlight();
+  draw();
+}
+
+function highlight() {
+  // the selected link glows and gets a dark frame around what is shown of it
+  const { THREE } = view;
+  if (current.outline) {
+    current.root.remove(current.outline);
+    current.outline.geometry.dispose();
+    current.outline = null;
+  }
+  for (const { objects } of current.links.values()) {
+    for (const object of objects) if (object.material.emissive) object.material.emissive.set("#000000");
+  }
+  const picked = current.selected && current.links.get(current.selected);
+  if (!picked) return;
+  const box = new THREE.Box3();
+  for (const object of picked.objects) {
+    if (object.material.emissive) object.material.emissive.set("#3a3f4c");
+    if (shown(object)) box.expandByObject(object);
+  }
+  if (picked.com && show.com) box.expandByPoint(picked.com);
+  if (box.isEmpty() && Array.isArray(picked.link.at)) box.expandByPoint(new THREE.Vector3(...picked.link.at.slice(0, 3)));
+  box.expandByScalar(current.size / 150);
+  current.outline = new THREE.Box3Helper(box, "#101828");
+  current.root.add(current.outline);
+}
+
+function select(name, from) {
+  if (!current) return;
+  current.selected = name && current.links.has(name) ? name : null;
+  $("view").dataset.selected = current.selected || "";
+  highlight();
+  if (current.selected && from !== "scene") {
+    // turn to the link, keeping the distance
+    const target = current.outline ? current.outline.box.getCenter(new view.THREE.Vector3()) : null;
+    if (target) {
+      view.camera.position.add(target.clone().sub(view.controls.target));
+      view.controls.target.copy(target);
+      view.controls.update();
+    }
+  }
+  draw();
+}
+
+function shown(object) {
+  for (let up = object; up; up = up.parent) if (!up.visible) return false;
+  return true;
+}
+
+function visibleHit(hit) {
+  return hit.object.isMesh && hit.object.userData.link && shown(hit.object);
+}
+
+function pickOnClick(canvas) {
+  let down = null;
+  canvas.addEventListener("pointerdown", (event) => { down = [event.clientX, event.clientY]; });
+  canvas.addEventListener("pointerup", (event) => {
+    if (!down || !current || Math.hypot(event.clientX - down[0], event.clientY - down[1]) > 5) return;
+    const rect = canvas.getBoundingClientRect();
+    const ndc = new view.THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1,
+      -((event.clientY - rect.top) / rect.height) * 2 + 1);
+    view.raycaster.setFromCamera(ndc, view.camera);
+    const hits = view.raycaster.intersectObject(current.root, true).filter(visibleHit);
+    const solid = hits.find((h) => !h.object.material.transparent) || hits[0];
+    const name = solid ? solid.object.userData.link : null;
+    document.dispatchEvent(new CustomEvent("urdflint:select", { detail: { link: name, from: "scene" } }));
+  });
+}
+
+// -- the answer -------------------------------------------------------------------------------
+
+async function results(detail) {
+  const data = detail && detail.scene;
+  const notes = $("view-notes");
+  notes.hidden = true;
+  if (!data || !Array.isArray(data.links) || !data.links.length) {
+    if (current) { dispose(current); current = null; }
+    state("none", "No 3D view: the file is not a usable robot (see the findings), or it has over 2000 links.");
+    return;
+  }
+  if (!view && !webgl2()) {
+    state("unavailable", "No 3D view: this browser offers no WebGL 2. The tree and the findings have everything it would show.");
+    return;
+  }
+  state("loading", "Drawing…");
+  const phases = []; // "step ms" from the answer on: what the time went to
+  const mark = (step) => phases.push(`${step} ${Math.round(performance.now() - (detail.started || 0))}`);
+  try {
+    const lib = await three();
+    if (!view) {
+      setUp(lib);
+      warm();
+    }
+    await view.warm;
+    mark("ready");
+    resize(); // the results just appeared: the canvas takes its size before the first frame
+    build(data);
+    mark("built");
+  } catch (problem) {
+    state("error", `The 3D view could not be drawn (${problem && problem.message ? problem.message : problem}).`);
+    return;
+  }
+  const missing = data.links.flatMap((l) => [...l.visual, ...l.collision]).filter((s) => s.kind === "mesh" && s.missing);
+  const texts = [...(Array.isArray(data.notes) ? data.notes : [])];
+  if (missing.length) texts.push(`${missing.length} mesh${missing.length === 1 ? " is" : "es are"} not shown (not found or not readable: see the C findings).`);
+  notes.textContent = texts.join(" ");
+  notes.hidden = !texts.length;
+  await new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done)));
+  state("ready");
+  const box = $("view");
+  box.dataset.links = String(data.links.length);
+  box.dataset.triangles = String((data.meshes || []).reduce((n, m) => n + (m.triangles || 0), 0));
+  mark("shown");
+  box.dataset.phases = phases.join(", ");
+  if (typeof detail.started === "number") box.dataset.renderedMs = String(Math.round(performance.now() - detail.started));
+}
+
+function project(point) {
+  const v = point.clone().project(view.camera);
+  const rect = view.renderer.domElement.getBoundingClientRect();
+  return { x: rect.left + ((v.x + 1) / 2) * rect.width, y: rect.top + ((1 - v.y) / 2) * rect.height, inside: Math.abs(v.x) <= 1 && Math.abs(v.y) <= 1 };
+}
+
+// where things are on the screen (CSS pixels in the viewport), for tests and curious users
+window.urdflintView = Object.freeze({
+  where(link, what) {
+    const found = current && current.links.get(link);
+    if (!found) return null;
+    if (what === "com") return found.com ? project(found.com) : null;
+    const target = what === "inertia" ? found.objects.find((o) => o.material.type === "MeshBasicMaterial") : found.objects[0];
+    if (!target) return null;
+    return project(new view.THREE.Box3().setFromObject(target).getCenter(new view.THREE.Vector3()));
+  },
+});
+
+document.addEventListener("urdflint:results", (event) => { results(event.detail); });
+document.addEventListener("urdflint:select", (event) => select(event.detail.link, event.detail.from));
+document.querySelectorAll("[data-show]").forEach((box) => box.addEventListener("change", () => {
+  chosen[box.dataset.show] = true;
+  setShown(box.dataset.show, box.type === "checkbox" ? box.checked : box.value);
+}));
+$("view-reset").addEventListener("click", () => {
+  if (!current) return;
+  current.view = framed(view.THREE, current);
+  frame();
+});
+$("check-form").addEventListener("submit", prepare);
+$("fix").addEventListener("click", prepare);
+state("empty", "Check a robot to see it here: drag to orbit, scroll to zoom, click a link to select it.");
