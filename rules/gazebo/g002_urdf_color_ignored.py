@@ -39,7 +39,6 @@ in a macro.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from xml.sax.saxutils import escape
 
 from lxml import etree
 
@@ -49,7 +48,7 @@ from urdflint.model.document import Document, Link, children
 from urdflint.model.edits import InsertChild, Repair
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import blocks_for, keys_of
-from urdflint.model.values import fmt, vector
+from urdflint.model.values import fmt, vector, xml_attribute
 
 # Achromatic colours in this brightness band look like Gazebo's default grey anyway.
 GREY_SPREAD, GREY_LOW, GREY_HIGH = 0.05, 0.4, 0.8
@@ -157,7 +156,7 @@ def _repair(doc: Document, link: Link) -> Repair | None:
         last = children(blocks[0])
         op = InsertChild(blocks[0], visual, after=last[-1] if last else None)
         return Repair("safe", description, (op,))
-    name = escape(link.name, {'"': "&quot;"})
+    name = xml_attribute(link.name)
     block = f'<gazebo reference="{name}">\n{_indent(visual, 2)}\n</gazebo>'
     return Repair("safe", description, (InsertChild(doc.robot, block, after=link.element),))
 

@@ -38,7 +38,6 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from typing import Any
-from xml.sax.saxutils import quoteattr
 
 from lxml import etree
 
@@ -49,7 +48,7 @@ from urdflint.model.finding import Severity
 from urdflint.model.geometry import read_shape
 from urdflint.model.schema import SPECS
 from urdflint.model.structure import q, welded
-from urdflint.model.values import has_xacro, parse_numbers
+from urdflint.model.values import has_xacro, parse_numbers, xml_attribute
 from urdflint.sources.hulls import HullFile, hull_file
 
 # The shapes copied into a collision, and how many positive numbers each attribute holds.
@@ -161,5 +160,5 @@ def _collision(visual: etree._Element, shape: etree._Element | None) -> str | No
 def _empty(el: etree._Element) -> str:
     """``<tag a="..."/>`` with the element's URDF attributes, in the order written."""
     known = SPECS[str(el.tag)].attrs
-    attrs = "".join(f" {k}={quoteattr(v)}" for k, v in el.attrib.items() if k in known)
+    attrs = "".join(f' {k}="{xml_attribute(v)}"' for k, v in el.attrib.items() if k in known)
     return f"<{el.tag}{attrs}/>"
