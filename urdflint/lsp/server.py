@@ -22,7 +22,7 @@ from urdflint.engine import config
 from urdflint.lsp import convert, describe
 from urdflint.lsp.analysis import Analyzer, wanted
 
-DEBOUNCE = 0.05  # s after the last keystroke before a buffer is linted
+DEBOUNCE = 0.025  # s after the last keystroke before a buffer is linted
 
 
 class UrdflintServer(LanguageServer):
