@@ -286,3 +286,22 @@ async def test_a_half_typed_file_is_a_finding_not_a_crash(client: LanguageClient
         client, uri, '<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"/>\n</robot>\n'
     )
     assert "X001" not in [d.code for d in client.diagnostics[uri]]
+
+
+@pytest.mark.asyncio
+async def test_a_macro_file_included_by_another_macro_file(client: LanguageClient, package: Path):
+    urdf = package / "urdf"
+    (urdf / "arm_macro.xacro").write_text(
+        '<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find arm_description)/urdf/segment.xacro"/>\n'
+        '  <xacro:macro name="arm" params="parent">\n'
+        '    <xacro:segment name="upper" parent="${parent}"/>\n'
+        "  </xacro:macro>\n</robot>\n"
+    )
+    (urdf / "arm.urdf.xacro").write_text(
+        '<?xml version="1.0"?>\n<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find arm_description)/urdf/arm_macro.xacro"/>\n'
+        '  <link name="base_link"/>\n  <xacro:arm parent="base_link"/>\n</robot>\n'
+    )
+    uri = await opened(client, urdf / "segment.xacro")
+    assert [c for c in codes(client, uri) if c[0] == "J008"] == [("J008", 12, 6, 25)]

@@ -22,6 +22,7 @@ from urdflint.engine import config
 from urdflint.lsp import convert, describe
 from urdflint.lsp.analysis import Analyzer, wanted
 
+MAX_ANALYSES = 12  # entries analysed for one change, through nested macro files
 DEBOUNCE = 0.025  # s after the last keystroke before a buffer is linted
 
 
@@ -66,8 +67,10 @@ class UrdflintServer(LanguageServer):
             touched |= set(after.findings) | {entry}
             if before is not None:
                 touched |= set(before.findings)
-            if entry == path and after.library and not self.analyzer.reached(path):
-                todo += self.analyzer.entries_of(path)  # a macro file: through its entries
+            if after.library and len(done) <= MAX_ANALYSES and not self.analyzer.reached(entry):
+                # a macro file: through the files that include it (a macro file included by
+                # another macro file: through that one's, and so on)
+                todo += self.analyzer.entries_of(entry)
         return touched
 
     def publish(self, path: str) -> None:
