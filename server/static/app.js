@@ -525,7 +525,7 @@
     const facts = [];
     const inertial = link.inertial;
     if (inertial && typeof inertial.mass === "number") facts.push(`mass ${number(inertial.mass)} kg`);
-    if (inertial && Array.isArray(inertial.com)) facts.push(`centre of mass (${inertial.com.map((v) => number(v, 3)).join(", ")}) m`);
+    if (inertial && Array.isArray(inertial.com)) facts.push(`centre of mass (${inertial.com.map((v) => number(v, 3)).join(", ")}) m in the world frame`);
     if (inertial && inertial.box) facts.push(`inertia box ${inertial.box.size.map((v) => number(v, 3)).join(" × ")} m${inertial.box.valid ? "" : " (impossible tensor)"}`);
     else if (inertial && inertial.problem) facts.push(`no inertia box: ${inertial.problem}`);
     else if (!inertial) facts.push("no <inertial>");
