@@ -48,7 +48,15 @@ def test_a_static_check_imports_no_heavy_module_no_formatter_it_does_not_use() -
         "from urdflint.cli import main\n"
         f"main(['check', '--isolated', '--exit-zero', '--select', 'X,S,J', {str(SMALL)!r}])"
     )
-    heavy = {"numpy", "trimesh", "pinocchio", "fastapi", "tomllib", "xml.sax.saxutils", "urllib.request"}
+    heavy = {
+        "numpy",
+        "trimesh",
+        "pinocchio",
+        "fastapi",
+        "tomllib",
+        "xml.sax.saxutils",
+        "urllib.request",
+    }
     assert heavy & loaded == set()
     formatters = {m for m in loaded if m.startswith("urdflint.outputs.formatters.")}
     assert formatters == {"urdflint.outputs.formatters.run", "urdflint.outputs.formatters.text"}
