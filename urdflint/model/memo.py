@@ -10,10 +10,15 @@ Keys are the lxml element proxies themselves: a table holds them, so lxml keeps 
 those same objects for their nodes (an element proxy is recreated only once nothing holds
 it), and a lookup is by identity. The trees are never edited after parsing (``urdflint fix``
 edits the text and parses it again), so a result stays true for its element.
+
+Thread-safe for the language server, which lints on a worker thread while it answers hovers
+on another: the last tree asked is one tuple swapped whole, and switching trees or
+forgetting takes a lock.
 """
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -23,14 +28,17 @@ if TYPE_CHECKING:
 T = TypeVar("T")
 
 MAX_TREES = 4  # the document being linted, and the few trees read beside it (an SRDF...)
-_LAST: list[Any] = [None, None]  # the root and the tables of the tree asked last
+_LAST: tuple[Any, dict[str, dict[Any, Any]]] = (None, {})  # the tree asked last, its tables
 _TREES: dict[Any, dict[str, dict[Any, Any]]] = {}  # root element -> tables, oldest first
+_LOCK = threading.Lock()
 
 
 def table(el: etree._Element, name: str) -> dict[Any, Any]:
     """The table ``name`` of the tree ``el`` belongs to (empty the first time)."""
     root = el.getroottree().getroot()
-    tables = _LAST[1] if _LAST[0] is root else _tables_of(root)
+    last, tables = _LAST  # one read: a root and its own tables, whatever other threads do
+    if last is not root:
+        tables = _tables_of(root)
     found = tables.get(name)
     if found is None:
         found = tables[name] = {}
@@ -38,13 +46,15 @@ def table(el: etree._Element, name: str) -> dict[Any, Any]:
 
 
 def _tables_of(root: etree._Element) -> dict[str, dict[Any, Any]]:
-    tables = _TREES.pop(root, None)
-    if tables is None:
-        tables = {}
-        while len(_TREES) >= MAX_TREES:
-            del _TREES[next(iter(_TREES))]  # the tree asked least recently
-    _TREES[root] = tables  # now the most recent
-    _LAST[:] = [root, tables]
+    global _LAST
+    with _LOCK:
+        tables = _TREES.pop(root, None)
+        if tables is None:
+            tables = {}
+            while len(_TREES) >= MAX_TREES:
+                del _TREES[next(iter(_TREES))]  # the tree asked least recently
+        _TREES[root] = tables  # now the most recent
+        _LAST = (root, tables)
     return tables
 
 
@@ -59,5 +69,7 @@ def once(el: etree._Element, name: str, build: Callable[[], T]) -> T:
 def forget() -> None:
     """Drop every table: the engine calls it when a document's rules have run, so nothing
     outlives a lint."""
-    _TREES.clear()
-    _LAST[:] = [None, None]
+    global _LAST
+    with _LOCK:
+        _TREES.clear()
+        _LAST = (None, {})

@@ -24,8 +24,9 @@ class Lines:
 
     def __init__(self, data: bytes) -> None:
         self.data = data
-        if _LAST and _LAST[0][0] is data:
-            self.starts = _LAST[0][1]
+        last = _LAST[0] if _LAST else None  # one read: the LSP indexes on two threads
+        if last is not None and last[0] is data:
+            self.starts = last[1]
             return
         self.starts = [0] + [m.end() for m in NEWLINE_RE.finditer(data)]
         _LAST[:] = [(data, self.starts)]
