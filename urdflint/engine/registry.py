@@ -168,6 +168,11 @@ def lookup(key: str) -> Rule | None:
     """Find a rule by code (``I005``) or name (``triangle-inequality``)."""
     key = key.strip()
     load_rules(families_of([key]))
+    return _find(key)
+
+
+def _find(key: str) -> Rule | None:
+    """:func:`lookup` among the families already loaded."""
     if key.upper() in RULES:
         return RULES[key.upper()]
     for candidate in RULES.values():
@@ -208,13 +213,12 @@ def expand(selectors: list[str] | tuple[str, ...]) -> set[str]:
         if key.upper() == "ALL":
             codes.update(RULES)
             continue
-        found = lookup(key)
+        found = _find(key)  # its family is loaded above
         if found is not None:
             codes.add(found.code)
             continue
-        prefix = [
-            c for c in RULES if c.startswith(key.upper()) and SELECTOR_RE.fullmatch(key.upper())
-        ]
+        upper = key.upper()
+        prefix = [c for c in RULES if c.startswith(upper)] if SELECTOR_RE.fullmatch(upper) else []
         if not prefix:
             raise ValueError(f"unknown rule or rule family {raw!r}")
         codes.update(prefix)
