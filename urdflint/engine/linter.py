@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import gc
 import logging
+import os
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -78,9 +79,10 @@ def load(path: Path, shown: str, settings: Settings, context: Context | None = N
         from urdflint.sources import xacro as xacro_input
 
         return xacro_input.document(path, shown, settings, context)
+    unsaved = context.overlay.get(os.path.abspath(path))  # an editor's buffer (urdflint lsp)
     return Document(
         shown,
-        path.read_bytes(),
+        unsaved if unsaved is not None else path.read_bytes(),
         targets=frozenset(settings.targets),
         settings=settings,
         context=context,

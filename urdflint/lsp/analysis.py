@@ -90,15 +90,8 @@ class Analyzer:
         entry = os.path.abspath(entry)
         settings = self._settings(entry)
         context = Context(workspace=self.workspace, overlay=self.overlay())
-        shown = entry
-        try:
-            if linter.is_xacro(entry):
-                result = linter.lint_path(Path(entry), shown, settings, context)
-            else:
-                data = context.overlay.get(entry)
-                if data is None:
-                    data = Path(entry).read_bytes()
-                result = linter.lint_bytes(data, shown, settings, context, Path(entry).parent)
+        try:  # the open buffers come through the context (xacro includes too)
+            result = linter.lint_path(Path(entry), entry, settings, context)
         except OSError:
             self.analyses.pop(entry, None)
             return Analysis(entry)
