@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import gc
 import logging
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,6 +48,26 @@ class Result:
 
 
 XACRO_SUFFIXES = (".xacro",)
+
+# Set by a caller that may abandon a run (the language server, when a newer edit arrives):
+# asked between rules, and a run whose answer is True stops with :class:`Superseded`.
+_STOP: contextvars.ContextVar[Callable[[], bool] | None] = contextvars.ContextVar(
+    "urdflint_stop", default=None
+)
+
+
+class Superseded(Exception):
+    """A run stopped at a rule boundary because its caller no longer wants the answer."""
+
+
+@contextlib.contextmanager
+def stoppable(stop: Callable[[], bool]) -> Iterator[None]:
+    """Runs inside this block end early (:class:`Superseded`) once ``stop()`` is true."""
+    token = _STOP.set(stop)
+    try:
+        yield
+    finally:
+        _STOP.reset(token)
 
 
 def is_xacro(path: str) -> bool:
@@ -116,7 +138,10 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
     raw: list[tuple[Rule, Hit]] = []
     skipped: dict[str, tuple[str, ...]] = {}
     ran: list[str] = []
+    stop = _STOP.get()
     for code in sorted(enabled):
+        if stop is not None and stop():
+            raise Superseded(doc.path)
         rule = rules[code]
         if rule.requires_robot and doc.root is None:
             continue
