@@ -137,6 +137,13 @@ def _dom_nodes(node: Any) -> Iterator[Any]:
         stack.extend(reversed(kids))
 
 
+def nodes(root: etree._Element) -> Iterator[etree._Element]:
+    """Elements and comments of an lxml tree in document order (what the DOM walk pairs)."""
+    for el in root.iter():
+        if isinstance(el.tag, str) or isinstance(el, etree._Comment):
+            yield el
+
+
 def _local(tag: str) -> str:
     return tag.rpartition("}")[2] if tag.startswith("{") else tag.rpartition(":")[2]
 
@@ -147,19 +154,37 @@ class SourceMap:
     Built lazily on the first question, by walking the final DOM and the lxml tree in
     parallel. If the two walks disagree (they never should), nothing is mapped and every
     element falls back to its line in the expanded document.
+
+    A map :meth:`carried` over to a document patched from this one (:mod:`.patch`: same
+    elements and comments in the same order, one source file edited) holds no DOM but the
+    marks in document order, paired with the new tree on its first question.
     """
 
-    def __init__(self, files: list[SourceFile], dom: Any, shown: str, expanded: bytes) -> None:
+    def __init__(
+        self,
+        files: list[SourceFile],
+        dom: Any,
+        shown: str,
+        expanded: bytes,
+        *,
+        order: list[Mark | None] | None = None,
+    ) -> None:
         self.files = files
         self.dom = dom
         self.shown = shown
         self.expanded = expanded
+        self._order = order  # the marks in document order (see sequence and carried)
         self._marks: dict[Any, Mark] | None = None
         self._origins: dict[Mark, Origin] = {}
 
     def _build(self, root: etree._Element) -> dict[Any, Mark]:
+        if self._order is not None:
+            return self._zip(root, self._order)
+        dom = self.dom  # read once: another thread may be building too
+        if dom is None:
+            return {}
         marks: dict[Any, Mark] = {}
-        dom_nodes = _dom_nodes(self.dom.documentElement)
+        dom_nodes = _dom_nodes(dom.documentElement)
         for el in root.iter():
             if not isinstance(el.tag, str) and not isinstance(el, etree._Comment):
                 continue  # processing instructions are dropped by the document parser
@@ -179,10 +204,81 @@ class SourceMap:
         self.dom = None  # the DOM is not needed any more
         return marks
 
-    def mark(self, el: etree._Element) -> Mark | None:
+    def _zip(self, root: etree._Element, order: list[Mark | None]) -> dict[Any, Mark]:
+        listed = list(nodes(root))
+        if len(listed) != len(order):
+            self._order = None
+            return {}
+        return {el: mark for el, mark in zip(listed, order, strict=True) if mark is not None}
+
+    def _all(self, root: etree._Element) -> dict[Any, Mark]:
         if self._marks is None:
-            self._marks = self._build(el.getroottree().getroot()) if self.dom is not None else {}
-        return self._marks.get(el)
+            self._marks = self._build(root)
+        return self._marks
+
+    def mark(self, el: etree._Element) -> Mark | None:
+        return self._all(el.getroottree().getroot()).get(el)
+
+    def sequence(self, root: etree._Element) -> list[Mark | None] | None:
+        """The mark of each element and comment of ``root`` in document order (``None``: the
+        tree could not be mapped). Kept: the list is shared, do not change it."""
+        marks = self._all(root)
+        if not marks:
+            return None
+        if self._order is None:
+            self._order = [marks.get(el) for el in nodes(root)]
+        return self._order
+
+    def written_at(self, root: etree._Element, source: int, offset: int) -> list[etree._Element]:
+        """The elements of ``root`` written by the start tag at byte ``offset`` of file
+        ``source`` (every copy a macro or block made of it), in document order."""
+        return [
+            el
+            for el, mark in self._all(root).items()
+            if mark[1] == offset and mark[0] == source and isinstance(el.tag, str)
+        ]
+
+    def carried(
+        self, index: int, data: bytes, at: int, delta: int, expanded: bytes, root: etree._Element
+    ) -> SourceMap | None:
+        """The map of ``expanded``, a document with the same elements and comments in the same
+        order as ``root``'s, for the sources where file ``index`` now reads ``data``: ``delta``
+        bytes were inserted (removed, when negative) at byte ``at`` of that file, so the marks
+        at or after ``at`` in it move by ``delta``."""
+        order = self.sequence(root)
+        if order is None:
+            return None
+        files = list(self.files)
+        before = files[index]
+        files[index] = SourceFile(before.path, before.shown, data)
+        chains: dict[int, tuple[Link, ...]] = {}  # by identity: a macro call's nodes share one
+
+        def moved(chain: tuple[Link, ...]) -> tuple[Link, ...]:
+            found = chains.get(id(chain))
+            if found is None:
+                found = chain
+                if any(i == index and o >= at for _, i, o in chain):
+                    found = tuple(
+                        (m, i, o + delta if i == index and o >= at else o) for m, i, o in chain
+                    )
+                chains[id(chain)] = found
+            return found
+
+        shifted: list[Mark | None] = []
+        append = shifted.append
+        for mark in order:
+            if mark is None:
+                append(None)
+                continue
+            source, offset, chain = mark
+            new = moved(chain) if chain else chain
+            if source == index and offset >= at:
+                append((source, offset + delta, new))
+            elif new is not chain:
+                append((source, offset, new))
+            else:
+                append(mark)
+        return SourceMap(files, None, self.shown, expanded, order=shifted)
 
     def __call__(self, el: etree._Element, attribute: str | None = None) -> Origin | None:
         mark = self.mark(el)
