@@ -2,6 +2,7 @@ from __future__ import annotations
 
 import os
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -10,6 +11,12 @@ ROOT = Path(__file__).resolve().parent.parent
 FIXTURES = ROOT / "fixtures"
 SHARED = Path(os.environ.get("URDFLINT_SHARED", ROOT.parent / "shared"))
 CORPUS = SHARED / "corpus" / "robots"
+
+
+# The analysis cache of every urdflint the tests run (in this process and in subprocesses)
+# lives in a folder of this test process, never in the user's cache.
+CACHE_DIR = Path(tempfile.mkdtemp(prefix="urdflint-test-cache-"))
+os.environ["URDFLINT_CACHE_DIR"] = str(CACHE_DIR)
 
 
 def corpus_models() -> list[Path]:

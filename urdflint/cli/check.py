@@ -13,7 +13,14 @@ from typing import Any
 from urdflint import __version__
 from urdflint.cli import fix
 from urdflint.cli.check_options import add_parser
-from urdflint.cli.common import EXIT_ERROR, EXIT_FINDINGS, EXIT_OK, UsageError, run_context
+from urdflint.cli.common import (
+    EXIT_ERROR,
+    EXIT_FINDINGS,
+    EXIT_OK,
+    UsageError,
+    open_cache,
+    run_context,
+)
 from urdflint.engine import config, instances
 from urdflint.engine.options import SettingsFinder
 from urdflint.model import targets
@@ -48,7 +55,11 @@ def run(args: argparse.Namespace) -> int:
         finder = SettingsFinder(args)
     except config.ConfigError as exc:
         raise UsageError(str(exc)) from None
-    context = run_context(args)
+    try:
+        here = finder.for_folder(Path.cwd())
+    except config.ConfigError as exc:
+        raise UsageError(str(exc)) from None
+    context = run_context(args, open_cache(args, here))
     files, errors = collect(args.paths, context.workspace)
     files = as_entries(_changed_only(args, files), context.workspace)
     accepted = _load_baseline(args)
@@ -61,7 +72,11 @@ def run(args: argparse.Namespace) -> int:
         _lint_files(args, files, finder, found, context)
         return found
 
-    outcome, done = fix.drive(args, files, lint)
+    try:
+        outcome, done = fix.drive(args, files, lint)
+    finally:
+        if context.cache is not None:
+            context.cache.finish()
     if done is not None:
         return done
     findings = _finish(args, finder, outcome, accepted)

@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint.cli import fix, package
-from urdflint.cli.common import gate_options, model_options
+from urdflint.cli.common import cache_options, gate_options, model_options
 from urdflint.engine import config, options
 from urdflint.model import targets
 from urdflint.outputs import formatters
@@ -170,3 +170,4 @@ def _more_options(check: argparse.ArgumentParser) -> None:
         "e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
     )
     gate_options(check)
+    cache_options(check)

@@ -17,9 +17,45 @@ __all__ = [
     "EXIT_OK",
     "UsageError",
     "gate_options",
+    "cache_options",
     "model_options",
+    "open_cache",
     "run_context",
 ]  # fmt: skip
+
+
+def cache_options(parser: argparse.ArgumentParser) -> None:
+    """``--no-cache`` and ``--cache-dir`` (urdflint.cache)."""
+    parser.add_argument(
+        "--no-cache",
+        action="store_true",
+        help="neither read nor write the analysis cache",
+    )
+    parser.add_argument(
+        "--cache-dir",
+        type=Path,
+        metavar="DIR",
+        help="the analysis cache folder (default: cache-dir in the configuration, "
+        "$URDFLINT_CACHE_DIR, else $XDG_CACHE_HOME/urdflint or ~/.cache/urdflint)",
+    )
+
+
+def open_cache(args: argparse.Namespace, settings: Any = None) -> Any:
+    """The run's :class:`urdflint.cache.Cache`, or ``None`` with ``--no-cache`` (or
+    ``URDFLINT_NO_CACHE=1``)."""
+    import os
+
+    if getattr(args, "no_cache", False) or os.environ.get("URDFLINT_NO_CACHE", "") not in (
+        "",
+        "0",
+    ):
+        return None
+    from urdflint.cache import DEFAULT_MAX_BYTES, Cache
+
+    folder = getattr(args, "cache_dir", None) or getattr(settings, "cache_dir", None)
+    size = getattr(settings, "cache_max_size", None) or DEFAULT_MAX_BYTES
+    found = Cache(folder, size)
+    return found if found.usable else None
 
 
 def model_options(parser: argparse.ArgumentParser) -> None:
@@ -74,12 +110,13 @@ def gate_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def run_context(args: argparse.Namespace) -> Any:
+def run_context(args: argparse.Namespace, cache: Any = None) -> Any:
     from urdflint.engine.context import Context
     from urdflint.sources import workspace
 
     paths = [Path(p) for p in getattr(args, "paths", [getattr(args, "path", ".")]) if p != "-"]
     return Context(
         package_paths={name: Path(folder) for name, folder in args.package_path},
-        workspace=workspace.Packages(paths or [Path.cwd()]),
+        workspace=workspace.Packages(paths or [Path.cwd()], cache),
+        cache=cache,
     )

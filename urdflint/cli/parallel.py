@@ -66,7 +66,57 @@ def jobs_for(requested: int | None, files: int) -> int:
 
 
 def lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
-    """Lint one file as a serial run does."""
+    """Lint one file as a serial run does; replayed from the analysis cache when nothing it
+    read changed (not with ``--emit-expanded``, which must write the expansion, nor with
+    ``--confirm``, whose engines are not part of the key)."""
+    cache = getattr(context, "cache", None)
+    if cache is None or flags.emit_expanded or task.settings.confirm:
+        return _lint_one(task, context, flags)
+    from urdflint.cache import keys
+
+    data = keys.canonical(task.data) if task.data is not None else None
+    parts = (
+        os.path.abspath(task.name) if task.data is None else "-",
+        task.shown,
+        data,
+        settings_key(task.settings),
+        flags.matrix,
+        context_key(context),
+    )
+    return cache.result(  # type: ignore[no-any-return]
+        "check",
+        parts,
+        lambda: _lint_one(task, context, flags),
+        overlay=context.overlay,
+        environ=context.environ,
+        keep=lambda outcome: not outcome.crashed and outcome.error is None,
+    )
+
+
+def settings_key(settings: Any) -> Any:
+    """What of the settings shapes a result (not where the cache lives)."""
+    from dataclasses import replace
+
+    from urdflint.cache import keys
+
+    return keys.canonical(replace(settings, cache_dir=None, cache_max_size=None))
+
+
+def context_key(context: Any) -> Any:
+    """What of the run's context shapes a result besides the files it reads."""
+    env = context.environ if context.environ is not None else os.environ
+    workspace = getattr(context.workspace, "key", None)
+    return (
+        {name: str(Path(folder).resolve()) for name, folder in context.package_paths.items()},
+        str(context.root) if context.root is not None else None,
+        dict(context.q),
+        workspace,
+        {name: env.get(name) for name in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")},
+        os.getcwd(),
+    )
+
+
+def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
     from urdflint.engine import linter, matrix
     from urdflint.outputs import report
 

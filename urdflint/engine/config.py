@@ -35,6 +35,8 @@ KEYS = frozenset(
         "confirm",
         "srdf",
         "profile",
+        "cache-dir",
+        "cache-max-size",
     }
 )
 PROFILES = ("mobile", "industrial", "humanoid")  # the conventions rules (N family) to run
@@ -89,6 +91,8 @@ class Settings:
     confirm: tuple[str, ...] = ()  # engines that load the model (E rules; --confirm)
     srdf: Path | None = None  # the MoveIt SRDF of the robot (M rules; else found beside it)
     profile: str | None = None  # "mobile", "industrial" or "humanoid": REP conventions
+    cache_dir: Path | None = None  # where the analysis cache lives (not a lint setting)
+    cache_max_size: int | None = None  # its size limit in bytes (not a lint setting)
 
     def xacro_args_for(self, path: str) -> dict[str, str]:
         """``xacro-args``, then each matching ``per-file-xacro-args`` table (later wins)."""
@@ -247,6 +251,22 @@ def _inputs(settings: Settings, data: dict[str, Any], source: Path | None) -> Se
         settings = replace(settings, srdf=base / data["srdf"])
     if "profile" in data:
         settings = replace(settings, profile=profile("profile", data["profile"]))
+    if "cache-dir" in data:
+        if not isinstance(data["cache-dir"], str) or not data["cache-dir"].strip():
+            raise ConfigError("'cache-dir' must be the path of a folder")
+        base = source.parent if source is not None else Path.cwd()
+        settings = replace(settings, cache_dir=base / Path(data["cache-dir"]).expanduser())
+    if "cache-max-size" in data:
+        from urdflint.cache.store import parse_size
+
+        try:
+            size = parse_size(data["cache-max-size"])
+        except (ValueError, TypeError, AttributeError):
+            raise ConfigError(
+                f"'cache-max-size' must be a size such as \"512M\" or \"2G\", "
+                f"not {data['cache-max-size']!r}"
+            ) from None
+        settings = replace(settings, cache_max_size=size)
     return settings
 
 

@@ -30,6 +30,7 @@ class Context:
     q: dict[str, float] = field(default_factory=dict)
     workspace: Mapping[str, Path] = field(default_factory=dict)  # may be found lazily
     overlay: Mapping[str, bytes] = field(default_factory=dict)  # absolute path -> unsaved text
+    cache: Any = None  # the analysis cache (urdflint.cache.Cache), None: nothing is kept
     _meshes: Any = None
 
     def resolver(self, base_dir: Path | None, settings: Settings) -> Resolver:
@@ -44,5 +45,5 @@ class Context:
         if self._meshes is None:
             from urdflint.sources.meshes import MeshCache
 
-            self._meshes = MeshCache(root=self.root)
+            self._meshes = MeshCache(root=self.root, cache=self.cache)
         return self._meshes

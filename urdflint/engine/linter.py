@@ -13,6 +13,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from urdflint.cache import deps
 from urdflint.engine import fixes, instances, registry, suppress
 from urdflint.engine.config import Settings
 from urdflint.engine.context import Context
@@ -102,6 +103,8 @@ def load(path: Path, shown: str, settings: Settings, context: Context | None = N
 
         return xacro_input.document(path, shown, settings, context)
     unsaved = context.overlay.get(os.path.abspath(path))  # an editor's buffer (urdflint lsp)
+    if unsaved is not None:
+        deps.note_content(path, unsaved)
     return Document(
         shown,
         unsaved if unsaved is not None else path.read_bytes(),

@@ -60,12 +60,12 @@ class MeshTable:
         if not meshes_readable():
             return None, "this server cannot read meshes (trimesh is not installed)"
         info = load(self.doc, ref)
-        if info is None or not info.ok or info._mesh is None:
+        if info is None or not info.ok or info.mesh is None:
             return None, (info.error if info is not None else None) or "the file was not read"
         key = (info.path, ref.scale)
         if key not in self.ids:
             self.ids[key] = len(self.entries)
-            self.entries.append(Entry(ref.uri, info._mesh.vertices, info._mesh.faces))
+            self.entries.append(Entry(ref.uri, info.mesh.vertices, info.mesh.faces))
         return self.ids[key], None
 
     def encode(self, budget: int) -> tuple[list[dict[str, Any]], list[str]]:

@@ -47,7 +47,7 @@ def hull_file(doc: Document, shape: Shape) -> HullFile | str:
     info = doc.meshes.load(found.path, (1.0, 1.0, 1.0))
     if info.error is not None:
         return f"the mesh {uri!r} could not be read ({info.error})"
-    hull = _hull(info._mesh)
+    hull = _hull(info.mesh)
     if hull is None:
         return f"the mesh {uri!r} is flat or degenerate: it has no convex hull with a volume"
     vertices, faces = hull

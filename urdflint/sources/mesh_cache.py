@@ -53,6 +53,11 @@ class MeshInfo:
 
     ``unsupported`` marks errors that are not the file's fault (a format trimesh does
     not read, a loader that is not installed): C009 or nobody reports those.
+
+    The facts computed on demand (watertightness, volume, mass properties, convex hull) are
+    kept in ``_memo``; with the analysis cache they are stored by the file's content
+    (:func:`facts`), and a mesh whose facts were stored is not read again: :attr:`mesh`
+    loads it only when a fact is asked for that was never computed.
     """
 
     path: Path
@@ -68,6 +73,8 @@ class MeshInfo:
     unit: float = 1.0  # metres per file unit (a Collada <unit meter>), already applied
     _mesh: Any = field(default=None, repr=False, compare=False)
     _memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    _loader: Any = field(default=None, repr=False, compare=False)  # () -> trimesh mesh
+    _stored: Any = field(default=None, repr=False, compare=False)  # (facts) -> None
 
     @property
     def ok(self) -> bool:
@@ -78,11 +85,23 @@ class MeshInfo:
         return max(self.extents)
 
     @property
+    def mesh(self) -> Any:
+        """The trimesh mesh (after scale), read from the file if only its facts were known."""
+        if self._mesh is None and self._loader is not None and self.ok:
+            object.__setattr__(self, "_mesh", self._loader())
+        return self._mesh
+
+    def _remember(self, name: str, value: Any) -> None:
+        self._memo[name] = value
+        if self._stored is not None:
+            self._stored(facts(self))
+
+    @property
     def watertight(self) -> bool:
         """Every edge is shared by exactly two triangles (computed on first use)."""
         if "watertight" not in self._memo:
             with quiet_numpy():
-                self._memo["watertight"] = bool(self.ok and self._mesh.is_watertight)
+                self._remember("watertight", bool(self.ok and self.mesh.is_watertight))
         found: bool = self._memo["watertight"]
         return found
 
@@ -90,16 +109,35 @@ class MeshInfo:
     def volume(self) -> float | None:
         """Enclosed volume in m³: only for watertight, consistently wound meshes."""
         if "volume" not in self._memo:
-            self._memo["volume"] = _volume(self._mesh) if self.watertight else None
+            self._remember("volume", _volume(self.mesh) if self.watertight else None)
         found: float | None = self._memo["volume"]
         return found
 
     def solid(self) -> Solid | None:
         """Mass properties of the mesh when it encloses a volume, else of its convex hull."""
         if "solid" not in self._memo:
-            self._memo["solid"] = _solid(self._mesh, self.volume) if self.ok else None
+            volume = self.volume if self.ok else None
+            self._remember("solid", _solid(self.mesh, volume) if self.ok else None)
         found: Solid | None = self._memo["solid"]
         return found
+
+    def hull_points(self) -> Any:
+        """The vertices of the convex hull (the vertices themselves when qhull fails on flat
+        input), an ``(n, 3)`` numpy array, or ``None`` when there are none."""
+        import numpy as np
+
+        if "hull" not in self._memo:
+            points = None
+            if self.ok:
+                with quiet_numpy():
+                    try:
+                        points = np.asarray(self.mesh.convex_hull.vertices, dtype=float)
+                    except Exception:  # qhull on flat or degenerate input
+                        points = np.asarray(self.mesh.vertices, dtype=float)
+            found = points.astype(np.float64).tobytes() if points is not None and len(points) else None
+            self._remember("hull", found)
+        raw = self._memo["hull"]
+        return None if raw is None else np.frombuffer(raw, dtype=np.float64).reshape(-1, 3)
 
     def inertia(self, mass: float) -> tuple[Mat, str] | None:
         """Inertia tensor about the centre of mass at ``mass`` kg, and which solid gave it."""
@@ -110,6 +148,23 @@ class MeshInfo:
         """Centre of mass (uniform density) in the mesh frame, and which solid gave it."""
         solid = self.solid()
         return None if solid is None else (solid.com, solid.kind)
+
+
+FACTS = ("format", "faces", "vertices", "lo", "hi", "extents", "error", "unsupported", "size",
+         "unit")  # fmt: skip
+
+
+def facts(info: MeshInfo) -> dict[str, Any]:
+    """What the cache keeps of a mesh: plain values, no trimesh object."""
+    found = {name: getattr(info, name) for name in FACTS}
+    found["memo"] = dict(info._memo)
+    return found
+
+
+def from_facts(path: Path, found: dict[str, Any], loader: Any, stored: Any) -> MeshInfo:
+    values = {name: found[name] for name in FACTS}
+    memo = dict(found.get("memo") or {})
+    return MeshInfo(path, **values, _memo=memo, _loader=loader, _stored=stored)
 
 
 def _vec(values: Any) -> Vec:
@@ -163,18 +218,24 @@ class MeshCache:
 
     ``root`` confines every file access (the HTTP service): a mesh outside it is not
     read, and the files a mesh refers to (an OBJ's ``.mtl``, a glTF's buffers) are
-    looked up only inside it.
+    looked up only inside it. With ``cache`` (:class:`urdflint.cache.Cache`), a mesh whose
+    content was seen before (by this process, or by any run that shares the cache folder)
+    is described from its stored facts without reading it through trimesh.
     """
 
-    def __init__(self, root: Path | None = None, max_bytes: int = MAX_MESH_BYTES) -> None:
+    def __init__(
+        self, root: Path | None = None, max_bytes: int = MAX_MESH_BYTES, cache: Any = None
+    ) -> None:
         self.root = root.resolve() if root is not None else None
         self.max_bytes = max_bytes
+        self.cache = cache if cache is not None and cache.usable else None
         # trimesh logs skipped textures and broken references as warnings; without a handler
         # Python would print them on stderr. Findings carry what matters.
         logging.getLogger("trimesh").addHandler(_QUIET)
         self._cache: dict[tuple[Path, Vec], MeshInfo] = {}
         self.loads = 0  # trimesh.load calls made
         self.bytes = 0  # bytes of the files given to trimesh
+        self.reused = 0  # meshes described from stored facts
 
     def load(self, path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> MeshInfo:
         try:
@@ -185,6 +246,10 @@ class MeshCache:
         info = self._cache.get(key)
         if info is None:
             info = self._cache[key] = self._load(real, key[1])
+        elif self.cache is not None:
+            from urdflint.cache import deps
+
+            deps.note_file(real)
         return info
 
     def __len__(self) -> int:
@@ -196,9 +261,13 @@ class MeshCache:
         if self.root is not None and not path.is_relative_to(self.root):
             return fail("the file lies outside the allowed folder")
         try:
-            size = path.stat().st_size
+            info = path.stat()
         except OSError as exc:
+            from urdflint.cache import deps
+
+            deps.note_absent(path)
             return fail(f"cannot read the file ({exc.strerror or exc})")
+        size = info.st_size
         if ext not in TRIMESH_TYPES:
             return fail(f"urdflint cannot read {format_name(ext)} meshes", unsupported=True)
         if size > self.max_bytes:
@@ -209,6 +278,48 @@ class MeshCache:
             )
         if size == 0:
             return fail("the file is empty")
+        if self.cache is None or ext == "gltf":  # a glTF's buffers are other files
+            return self._read(path, ext, scale, size)
+        return self._cached(path, ext, scale, info)
+
+    def _cached(self, path: Path, ext: str, scale: Vec, info: Any) -> MeshInfo:
+        """The mesh described from the facts stored for its content, else read and stored."""
+        from urdflint import cache as caching
+        from urdflint.cache import deps
+
+        digest = self.cache.digest(str(path), info)
+        deps.note_file(path)
+        if digest is None:
+            return self._read(path, ext, scale, info.st_size)
+        key = (f"{digest}.{ext}", scale)
+
+        def store(found: dict[str, Any]) -> None:
+            caching.remember(key, found)
+            self.cache.put("mesh", found, *key)
+
+        found = caching.MEMORY.get(key)
+        if found is None:
+            found = self.cache.get("mesh", *key)
+            if isinstance(found, dict):
+                caching.remember(key, found)
+        if isinstance(found, dict):
+            try:
+                self.reused += 1
+                return from_facts(path, found, lambda: self._mesh_of(path, ext, scale), store)
+            except (KeyError, TypeError):  # an entry of another shape: read the file again
+                pass
+        described = self._read(path, ext, scale, info.st_size)
+        object.__setattr__(described, "_stored", store)
+        store(facts(described))
+        return described
+
+    def _mesh_of(self, path: Path, ext: str, scale: Vec) -> Any:
+        """The trimesh mesh of a file known by its facts, when a new fact needs it."""
+        found = self._read(path, ext, scale, 0)
+        return found._mesh
+
+    def _read(self, path: Path, ext: str, scale: Vec, size: int) -> MeshInfo:
+        fail = _Failure(path, ext)
         unit = 1.0
         if ext == "dae":
             if not optional.available("collada"):

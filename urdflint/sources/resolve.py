@@ -17,6 +17,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+from urdflint.cache import deps
+
 NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 SCHEME_RE = re.compile(r"^([a-zA-Z][a-zA-Z0-9+.-]*):")
 MAX_PACKAGE_XML_BYTES = 1 << 20
@@ -115,6 +117,7 @@ class Resolver:
             tried.append(f"package path {name}={folder}")
             if folder.is_dir() and self._inside(folder):
                 return folder, tuple(tried)
+            deps.note_absent(folder)
         if name in self.workspace:
             folder = self.workspace[name]
             tried.append(f"workspace package {name} at {folder}")
@@ -130,6 +133,7 @@ class Resolver:
             tried.append(f"AMENT_PREFIX_PATH {folder}")
             if folder.is_dir():
                 return folder, tuple(tried)
+            deps.note_absent(folder)
         if self.base_dir is not None and self.root is None:
             tried.append(f"package.xml named {name!r} above {self.base_dir}")
             for ancestor in (self.base_dir, *self.base_dir.parents):
@@ -192,7 +196,9 @@ class Resolver:
         if ".." in Path(os.path.normpath(path)).parts and self.root is not None:
             return Resolved(uri, None, tried, "the path leads outside the allowed folder")
         if not path.is_file():
+            deps.note_absent(path)  # a cached result is stale once the file appears
             return Resolved(uri, None, (*tried, str(path)), f"no file at {path}")
+        deps.note_file(path)
         return Resolved(uri, path, tried)
 
     def _inside(self, path: Path) -> bool:

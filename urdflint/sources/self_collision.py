@@ -214,7 +214,6 @@ def _hull(
     """The convex hull's vertices of a mesh (after scale), read once per file and scale;
     ``None`` when it cannot be read (C004-C006 report why), or trimesh is not installed."""
     from urdflint.model.inertia import meshes_readable
-    from urdflint.sources.mesh_cache import quiet_numpy
     from urdflint.sources.meshes import MeshRef, load, suspicious_size
 
     if not meshes_readable():
@@ -224,12 +223,7 @@ def _hull(
         return None
     key = (info.path, shape.scale)
     if key not in hulls:
-        with quiet_numpy():
-            try:
-                points = np.asarray(info._mesh.convex_hull.vertices, dtype=float)
-            except Exception:  # qhull on flat or degenerate input: the vertices themselves
-                points = np.asarray(info._mesh.vertices, dtype=float)
-        hulls[key] = points if len(points) else None
+        hulls[key] = info.hull_points()
     found = hulls[key]
     return None if found is None else (key, found)
 

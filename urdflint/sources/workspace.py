@@ -8,6 +8,8 @@ hidden folders and build outputs are skipped, as the ROS build tools skip them.
 
 from __future__ import annotations
 
+import hashlib
+import json
 import os
 from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
@@ -91,17 +93,46 @@ def discover(paths: Iterable[Path]) -> dict[str, Path]:
 
 class Packages(Mapping[str, Path]):
     """The packages below ``paths``, found on first use: a run that resolves no package
-    (a URDF without ``package://`` meshes, no xacro ``$(find)``) never walks the tree."""
+    (a URDF without ``package://`` meshes, no xacro ``$(find)``) never walks the tree.
 
-    def __init__(self, paths: Iterable[Path]) -> None:
+    With ``cache`` (:class:`urdflint.cache.Cache`) the index is kept with the folders the
+    walk listed and the ``package.xml`` files it read: the next run checks their times
+    instead of walking the tree again. A cached analysis that looked a package up records
+    the index it used (``packages`` input), so a package added or moved makes it stale.
+    """
+
+    def __init__(self, paths: Iterable[Path], cache: object = None) -> None:
+        global _CACHE
         self.paths = tuple(paths)
+        self.cache = cache
+        if cache is not None:
+            _CACHE = cache
         self._found: dict[str, Path] | None = None
+        self._digest = ""
+        self.key = json.dumps(sorted({str(p.resolve()) for p in self.paths}))
 
     @property
     def found(self) -> dict[str, Path]:
+        from urdflint.cache import deps
+
         if self._found is None:
-            self._found = discover(self.paths)
+            cache = self.cache
+            if cache is not None and getattr(cache, "usable", False):
+                token = deps.paused()  # the index's own inputs are kept with the index
+                try:
+                    listed = cache.result("packages", (self.key,), self._discover)  # type: ignore[attr-defined]
+                finally:
+                    deps.resume(token)
+            else:
+                listed = self._discover()
+            self._found = {name: Path(folder) for name, folder in listed}
+            self._digest = _digest(listed)
+            _LIVE[self.key] = self
+        deps.note("packages", self.key, self._digest)
         return self._found
+
+    def _discover(self) -> list[tuple[str, str]]:
+        return sorted((name, str(folder)) for name, folder in discover(self.paths).items())
 
     def __getitem__(self, name: str) -> Path:
         return self.found[name]
@@ -111,3 +142,29 @@ class Packages(Mapping[str, Path]):
 
     def __len__(self) -> int:
         return len(self.found)
+
+
+_LIVE: dict[str, Packages] = {}  # the indexes this process read, by their roots
+_CACHE: object = None  # the cache the last index was kept in
+
+
+def _digest(listed: list[tuple[str, str]]) -> str:
+    return hashlib.blake2b(json.dumps(listed).encode(), digest_size=16).hexdigest()
+
+
+def _same_packages(key: str, recorded: object) -> bool:
+    """A cached analysis's ``packages`` input: the index of these roots is still the same."""
+    live = _LIVE.get(key)
+    if live is None:
+        live = Packages([Path(p) for p in json.loads(key)], _CACHE)
+    live.found  # noqa: B018 - builds (or checks) the index
+    return live._digest == recorded
+
+
+def _register() -> None:
+    from urdflint.cache import deps
+
+    deps.register("packages", _same_packages)
+
+
+_register()

@@ -12,6 +12,7 @@ from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from urdflint.cache import deps
 from urdflint.model.document import MAX_BYTES, XmlProblem
 from urdflint.sources import install_layout
 from urdflint.sources.xacro.guards import (
@@ -196,6 +197,7 @@ class Expansion(Problems):
             raise refused("X010", f"{shown} is outside the allowed folder", needle=_base(full))
         unsaved = self.context.overlay.get(full)  # an editor's buffer (urdflint lsp)
         if unsaved is not None:
+            deps.note_content(full, unsaved)
             return unsaved
         try:
             size = os.stat(full).st_size
@@ -221,6 +223,7 @@ class Expansion(Problems):
             raise TypeError("urdflint's xacro parse only reads files")
         full = os.path.abspath(os.path.join(x.root_dir, filename))
         if not os.path.exists(full):  # installed there by CMake: read it in the source tree
+            deps.note_absent(full)
             full = install_layout.source_file(full) or full
         is_main = full == self.main
         try:
@@ -259,6 +262,7 @@ class Expansion(Problems):
         """``open`` for ``xacro.load_yaml``: confined and size-limited like includes."""
         full = os.path.abspath(os.fspath(file))
         if not os.path.exists(full):
+            deps.note_absent(full)
             full = install_layout.source_file(full) or full
         self.last_yaml = full
         data = self._read(full)
@@ -281,6 +285,7 @@ class Expansion(Problems):
     def _env(self, name: str) -> str:
         from xacro.substitution_args import SubstitutionException
 
+        deps.note_env(name, self.environ.get(name))
         try:
             return self.environ[name]
         except KeyError:
@@ -289,4 +294,5 @@ class Expansion(Problems):
             raise exc from None
 
     def _optenv(self, name: str, default: str = "") -> str:
+        deps.note_env(name, self.environ.get(name))
         return self.environ.get(name, default)

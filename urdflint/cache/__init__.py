@@ -1,0 +1,174 @@
+"""The analysis cache: work kept between runs, edits and requests, keyed by content.
+
+One :class:`Cache` per run (``Context.cache``; ``None`` with ``--no-cache``) over one folder
+on disk (:mod:`urdflint.cache.store`). It keeps, each under urdflint's code version
+(:func:`urdflint.cache.keys.code_version`):
+
+- ``mesh``: the facts of each mesh file by content digest and scale (bounds, triangle
+  count, units, watertightness, volume, mass properties, convex hull): a run whose meshes
+  were seen before, here or in another package, imports no trimesh;
+- ``result``: what checking one file gave, with every input it read (:mod:`deps`): a run on
+  unchanged inputs replays it without expanding xacro or running a rule;
+- ``packages``: the index of the workspace's ROS packages, with the folders it listed.
+
+Values are computed by the caller's function when missing or stale; a cache that cannot be
+written is read as it is, and a cache that cannot be used at all makes every lookup a miss.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import time
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any, TypeVar
+
+from urdflint.cache import deps, keys
+from urdflint.cache.store import DEFAULT_MAX_BYTES, Store, default_dir, parse_size
+
+__all__ = ["DEFAULT_MAX_BYTES", "Cache", "default_dir", "deps", "keys", "parse_size"]
+
+log = logging.getLogger(__name__)
+T = TypeVar("T")
+_MEMORY_MAX = 4096  # mesh facts kept in memory by a long-running process (LSP, service)
+
+
+class Cache:
+    """Lookups and stores for one run (see the module docstring)."""
+
+    def __init__(self, folder: Path | None = None, max_bytes: int = DEFAULT_MAX_BYTES) -> None:
+        self.folder = Path(folder) if folder is not None else default_dir()
+        self.store = Store(self.folder, max_bytes)
+        self.ignore = (str(self.folder.resolve()) + os.sep, *code_folders())
+        if self.store.problem:
+            log.warning("urdflint: cache not used: %s", self.store.problem)
+
+    def __getstate__(self) -> dict[str, Any]:  # a --jobs worker opens the folder again
+        return {"folder": self.folder, "max_bytes": self.store.max_bytes}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__init__(state["folder"], state["max_bytes"])  # type: ignore[misc]
+
+    @property
+    def usable(self) -> bool:
+        return self.store.usable
+
+    # -- results with their inputs ------------------------------------------------------
+
+    def result(
+        self,
+        kind: str,
+        parts: tuple[Any, ...],
+        compute: Callable[[], T],
+        *,
+        overlay: Mapping[str, bytes] | None = None,
+        environ: Mapping[str, str] | None = None,
+        keep: Callable[[T], bool] | None = None,
+    ) -> T:
+        """``compute()``'s value, replayed when none of the inputs it read changed.
+
+        ``parts`` is everything besides the files that the value depends on (settings,
+        options, the path as shown...). ``keep(value)`` says whether a fresh value may be
+        stored (an internal error is not).
+        """
+        key = keys.digest(keys.code_version(), kind, parts)
+        outer = deps.current()
+        token = deps.paused()
+        try:
+            entry = self.store.get(kind, key)
+        finally:
+            deps.resume(token)
+        if isinstance(entry, tuple) and len(entry) == 2:
+            found, value = entry
+            token = deps.paused()
+            try:
+                fresh = deps.unchanged(found, overlay, environ)
+            finally:
+                deps.resume(token)
+            if fresh:
+                if outer is not None:
+                    outer.inherit(found)
+                return value  # type: ignore[no-any-return]
+        with deps.recording(self.ignore) as recorder:
+            value = compute()
+            inputs = recorder.deps()
+        if outer is not None:
+            outer.inherit(inputs)
+        if keep is None or keep(value):
+            token = deps.paused()
+            try:
+                self.store.put(kind, key, (inputs, value))
+            finally:
+                deps.resume(token)
+        return value
+
+    # -- plain values by content --------------------------------------------------------
+
+    def get(self, kind: str, *parts: Any) -> Any:
+        token = deps.paused()
+        try:
+            return self.store.get(kind, keys.digest(keys.code_version(), kind, parts))
+        finally:
+            deps.resume(token)
+
+    def put(self, kind: str, value: Any, *parts: Any) -> None:
+        token = deps.paused()
+        try:
+            self.store.put(kind, keys.digest(keys.code_version(), kind, parts), value)
+        finally:
+            deps.resume(token)
+
+    def digest(self, path: str, info: os.stat_result | None = None) -> str | None:
+        """A file's content digest, remembered on disk by its identity (path, size, time,
+        inode), so a mesh seen by an earlier run is not read again to be recognised."""
+        if info is None:
+            try:
+                info = os.stat(path)
+            except OSError:
+                return None
+        identity = (path, info.st_size, info.st_mtime_ns, info.st_ino)
+        memo = deps._MEMO.get(identity)
+        if memo is not None:
+            return memo
+        racy = time.time() - info.st_mtime <= deps.RACY
+        if not racy:
+            found = self.get("digest", *identity)
+            if isinstance(found, str):
+                deps._MEMO[identity] = found
+                return found
+        found = deps.file_digest(path, info)
+        if found is not None and not racy:
+            self.put("digest", found, *identity)
+        return found
+
+    def finish(self) -> None:
+        """End of a run: keep the folder under its size limit."""
+        token = deps.paused()
+        try:
+            self.store.collect()
+        except OSError:
+            log.debug("cache collection failed", exc_info=True)
+        finally:
+            deps.resume(token)
+
+
+def code_folders() -> tuple[str, ...]:
+    """Where Python's and urdflint's own code lives: what is read there is code (covered by
+    :func:`keys.code_version`), never an input of the robot."""
+    import sysconfig
+
+    found = {sysconfig.get_paths()[name] for name in ("stdlib", "platstdlib", "purelib", "platlib")}
+    found |= {str(p) for p in keys._source_folders()}
+    return tuple(os.path.join(os.path.realpath(f), "") for f in sorted(found))
+
+
+# Mesh facts also live in memory, across the runs of one process (the language server's
+# analyses, the service's requests): the facts, never a loaded mesh, so memory stays small.
+MEMORY: dict[tuple[str, tuple[float, float, float]], Any] = {}
+
+
+def remember(key: tuple[str, tuple[float, float, float]], facts: Any) -> None:
+    if len(MEMORY) >= _MEMORY_MAX:
+        MEMORY.pop(next(iter(MEMORY)))
+    MEMORY[key] = facts
