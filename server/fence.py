@@ -78,6 +78,7 @@ class _Fence:
         self.denied: list[str] = []
         self.thread: int | None = None
         self.commands: tuple[tuple[str, ...], ...] = ()  # command prefixes the job may start
+        self.cache: str | None = None  # the analysis cache folder (keys are digests)
 
     def allowed_path(self, raw: Any, write: bool) -> bool:
         """Whether the job may open ``raw`` (for writing when ``write``)."""
@@ -91,6 +92,8 @@ class _Fence:
         assert self.root is not None
         if path == self.root or path.startswith(self.root + os.sep):
             return True
+        if self.cache is not None and path.startswith(self.cache + os.sep):
+            return True  # urdflint's own cache: the job names no path there
         if any(path == d.rstrip("/") or path.startswith(d) for d in DEVICES):
             return not write or path == "/dev/null"
         if write:

@@ -177,6 +177,11 @@ def _base(text: str | None) -> Settings:
             "config: 'package-paths' is not accepted by the service; upload the packages in "
             "the meshes zip (its top-level folders and package.xml files are the packages)"
         )
+    for key in ("cache-dir", "cache-max-size"):
+        if isinstance(data, dict) and key in data:
+            raise OptionError(
+                f"config: '{key}' is not accepted by the service: its cache is the server's"
+            )
     rules = data.get("rules") if isinstance(data, dict) else None
     c001 = rules.get("C001") if isinstance(rules, dict) else None
     if isinstance(c001, dict) and "write_meshes" in c001:

@@ -215,8 +215,10 @@ class Store:
                     info = path.stat()
                 except OSError:
                     continue
-                if name.startswith(".tmp-") and time.time() - info.st_mtime < 3600:
-                    continue
+                if name.startswith(".") and not (
+                    name.startswith(".tmp-") and time.time() - info.st_mtime > 3600
+                ):
+                    continue  # the collection marker, a write under way
                 found.append((info.st_mtime, info.st_size, path))
         return found
 

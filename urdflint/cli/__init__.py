@@ -12,7 +12,7 @@ import sys
 from collections.abc import Sequence
 
 from urdflint import __version__
-from urdflint.cli import check, info, lsp, rules, serve
+from urdflint.cli import cache, check, info, lsp, rules, serve
 from urdflint.cli.common import EXIT_ERROR, EXIT_FINDINGS, EXIT_OK, UsageError
 from urdflint.engine.options import SettingsFinder
 from urdflint.sources.discovery import collect
@@ -28,6 +28,7 @@ COMMANDS = {
     "explain": rules.run_explain,
     "serve": serve.run,
     "lsp": lsp.run,
+    "cache": cache.run,
 }
 
 
@@ -43,6 +44,7 @@ def build_parser() -> argparse.ArgumentParser:
     rules.add_parsers(sub)
     serve.add_parser(sub)
     lsp.add_parser(sub)
+    cache.add_parser(sub)
     return parser
 
 

@@ -6,7 +6,7 @@ import argparse
 import os
 from typing import Any
 
-from urdflint.cli.common import EXIT_OK, UsageError
+from urdflint.cli.common import EXIT_OK, UsageError, cache_options
 
 
 def add_parser(sub: Any) -> None:
@@ -34,6 +34,7 @@ def add_parser(sub: Any) -> None:
         help="server processes (each with its own URDFLINT_JOBS lint workers)",
     )
     serve.add_argument("--log-level", default="info", choices=("debug", "info", "warning", "error"))
+    cache_options(serve)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -48,6 +49,10 @@ def run(args: argparse.Namespace) -> int:
 
     if args.allow_confirm:  # the app reads its settings from the environment (Limits.from_env)
         os.environ["URDFLINT_ALLOW_CONFIRM"] = "1"
+    if args.no_cache:  # the lint workers read these (server/jobs.py: worker_cache)
+        os.environ["URDFLINT_NO_CACHE"] = "1"
+    if args.cache_dir is not None:
+        os.environ["URDFLINT_CACHE_DIR"] = str(args.cache_dir.resolve())
     try:
         Limits.from_env()
     except LimitError as exc:
