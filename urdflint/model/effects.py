@@ -118,6 +118,9 @@ class Effect:
     def level(self) -> Severity:
         return self.severity or self.consequence.severity
 
+    def __reduce__(self) -> tuple[type, tuple[object, ...]]:
+        return (Effect, (self.consequence, self.detail, self.severity))  # pickled fast
+
     def sentence(self, label: str) -> str:
         """``MuJoCo refuses the model (mass must be positive)``."""
         text = f"{label} {self.consequence.phrase}"

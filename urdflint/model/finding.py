@@ -44,6 +44,9 @@ class Call:
     def __str__(self) -> str:
         return f"in macro `{self.macro}`, called from {self.path}:{self.line}:{self.column}"
 
+    def __reduce__(self) -> tuple[type, tuple[str, str, int, int]]:
+        return (Call, (self.macro, self.path, self.line, self.column))  # pickled fast
+
 
 @dataclass(frozen=True, slots=True)
 class Finding:
@@ -62,6 +65,15 @@ class Finding:
     effects: tuple[tuple[str, Effect], ...] = ()  # what each selected target does with it
     engine: str | None = None  # E rules: the --confirm engine that did it
     autofix: Autofix | None = None  # the automatic fix (urdflint fix), if the rule has one
+
+    def __reduce__(self) -> tuple[type, tuple[object, ...]]:
+        """Pickled as a constructor call (the analysis cache and ``--jobs`` send thousands;
+        the dataclass default for frozen slots is four times slower)."""
+        return (Finding, (
+            self.path, self.line, self.column, self.code, self.name, self.severity,
+            self.message, self.element, self.fix, self.trace, self.effects, self.engine,
+            self.autofix,
+        ))  # fmt: skip
 
     def __post_init__(self) -> None:
         if self.line < 1 or self.column < 1:

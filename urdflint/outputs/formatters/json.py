@@ -24,4 +24,19 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, object]:
 
 
 def render(findings: Sequence[Finding], run: RunInfo) -> str:
-    return json.dumps(document(findings, run), indent=2) + "\n"
+    """The envelope indented, each finding on one line of its own: as readable, and written by
+    the C encoder (an indented dump is pure Python: 0.5 s for 1,700 findings)."""
+    data = document(findings, run)
+    parts = []
+    for key, value in data.items():
+        name = json.dumps(key)
+        if key == "findings" and value:
+            rows = ",\n".join(
+                "    " + json.dumps(item, separators=(", ", ": "))
+                for item in value  # type: ignore[attr-defined]
+            )
+            parts.append(f"  {name}: [\n{rows}\n  ]")
+        else:
+            text = json.dumps(value, indent=2).replace("\n", "\n  ")
+            parts.append(f"  {name}: {text}")
+    return "{\n" + ",\n".join(parts) + "\n}\n"
