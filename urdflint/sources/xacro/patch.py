@@ -74,7 +74,7 @@ from xml.dom import minidom
 
 from lxml import etree
 
-from urdflint.model.document import Document, children
+from urdflint.model.document import MAX_BYTES, Document, children
 from urdflint.model.parsing import XACRO_NS
 from urdflint.model.positions import TAG_END_RE, attribute_offset
 from urdflint.sources.xacro.sourcemap import SourceMap
@@ -128,45 +128,10 @@ def _apply(
     if sources.files[index].data != old:
         raise Refused("the previous expansion read another text of the file")
     edit = _edit(old, new)
-    name = edit.name.decode("utf-8")
-    before, after = edit.old_value, edit.new_value
-
-    # 3. the copies of the edited start tag in the expanded document
     if sources.sequence(root) is None:
         raise Refused("the previous source map could not be built")
-    targets = sources.written_at(root, index, edit.tag)
-    old_text, new_text = _written(before), _written(after)
-    text = previous.source
-    spans: list[tuple[int, int]] = []
-    for el in targets:
-        if not isinstance(el.tag, str) or etree.QName(el).namespace == XACRO_NS:
-            raise Refused("a copy is not a plain element")
-        if el.get(name) != before:
-            raise Refused(f"a copy of the element has {name}={el.get(name)!r}")
-        if not el.sourceline or el.sourceline >= MAX_LINE:
-            raise Refused("a copy's line in the expanded document is not known")
-        start = previous._tag_offset(el)
-        found = attribute_offset(text, start, name) if start is not None else None
-        if found is None:
-            raise Refused("a copy's attribute is not found in the expanded text")
-        equals = EQUALS_RE.match(text, found + len(edit.name))
-        if equals is None:
-            raise Refused("a copy's attribute is not written as minidom writes it")
-        begin = equals.end()
-        end = text.find(b'"', begin)
-        if text[begin:end] != old_text:
-            raise Refused("a copy's value is not written as minidom writes it")
-        spans.append((begin, end))
-    spans.sort()
-    pieces: list[bytes] = []
-    last = 0
-    for begin, end in spans:
-        if begin < last:
-            raise Refused("two copies overlap")
-        pieces += (text[last:begin], new_text)
-        last = end
-    pieces.append(text[last:])
-    expanded = b"".join(pieces)
+    copies = sources.written_at(root, index, edit.tag)
+    expanded = _spliced(previous.source, _spans(previous, copies, edit), _written(edit.new_value))
 
     # 4. the new document, with the source map carried over
     origin = sources.carried(index, new, edit.at, len(new) - len(old), expanded, root)
@@ -190,6 +155,51 @@ def _apply(
     if not children(doc.robot, "link"):
         doc.library = True  # as document() decides it
     return doc
+
+
+def _spans(previous: Document, copies: list[etree._Element], edit: Edit) -> list[tuple[int, int]]:
+    """3. Where the expanded text writes the edited value of each copy (between its quotes)."""
+    name = edit.name.decode("utf-8")
+    before = edit.old_value
+    written = _written(before)
+    text = previous.source
+    spans: list[tuple[int, int]] = []
+    for el in copies:
+        if not isinstance(el.tag, str) or etree.QName(el).namespace == XACRO_NS:
+            raise Refused("a copy is not a plain element")
+        if el.get(name) != before:
+            raise Refused(f"a copy of the element has {name}={el.get(name)!r}")
+        if not el.sourceline or el.sourceline >= MAX_LINE:
+            raise Refused("a copy's line in the expanded document is not known")
+        start = previous._tag_offset(el)
+        found = attribute_offset(text, start, name) if start is not None else None
+        if found is None:
+            raise Refused("a copy's attribute is not found in the expanded text")
+        equals = EQUALS_RE.match(text, found + len(edit.name))
+        if equals is None:
+            raise Refused("a copy's attribute is not written as minidom writes it")
+        begin = equals.end()
+        end = text.find(b'"', begin)
+        if text[begin:end] != written:
+            raise Refused("a copy's value is not written as minidom writes it")
+        spans.append((begin, end))
+    return sorted(spans)
+
+
+def _spliced(text: bytes, spans: list[tuple[int, int]], value: bytes) -> bytes:
+    """``text`` with ``value`` at each span (sorted)."""
+    pieces: list[bytes] = []
+    last = 0
+    for begin, end in spans:
+        if begin < last:
+            raise Refused("two copies overlap")
+        pieces += (text[last:begin], value)
+        last = end
+    pieces.append(text[last:])
+    expanded = b"".join(pieces)
+    if len(expanded) > MAX_BYTES:
+        raise Refused("the expanded document would be over the size limit")  # as expansion
+    return expanded
 
 
 @dataclasses.dataclass(frozen=True)
