@@ -86,7 +86,7 @@ __all__ = ["apply"]
 
 log = logging.getLogger("urdflint.sources.xacro")
 
-# an attribute inside a start tag: its name, and its value between quotes (group 3 or 4)
+# an attribute inside a start tag: its name, and its value between quotes (group 2 or 3)
 VALUE_RE = re.compile(rb"""\s([^\s=/>]+)\s*=\s*(?:"([^"]*)"|'([^']*)')""")
 ENCODING_RE = re.compile(rb"""^\s*<\?xml[^>]*?encoding\s*=\s*["']([^"']+)["']""")
 EQUALS_RE = re.compile(rb'\s*=\s*"')
