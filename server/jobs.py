@@ -83,58 +83,12 @@ def run(job: CheckJob | ReadyJob) -> dict[str, Any]:
         return reply(500, {"detail": "internal error while linting (see the server log)"})
 
 
-_CACHE: list[Any] = []  # the worker's analysis cache, opened on its first job
-
-
-def worker_cache() -> Any:
-    """The analysis cache the workers share (``URDFLINT_CACHE_DIR``, ``urdflint serve
-    --cache-dir``; none with ``URDFLINT_NO_CACHE=1``): the facts of meshes seen before, and
-    the answers to requests seen before, by the content of their files and options."""
-    if not _CACHE:
-        found = None
-        if os.environ.get("URDFLINT_NO_CACHE", "") in ("", "0"):
-            try:
-                from urdflint.cache import DEFAULT_MAX_BYTES, Cache, parse_size
-
-                size = os.environ.get("URDFLINT_CACHE_MAX_SIZE")
-                found = Cache(None, parse_size(size) if size else DEFAULT_MAX_BYTES)
-                found = found if found.usable else None
-            except (OSError, ValueError):
-                log.warning("the analysis cache cannot be used", exc_info=True)
-                found = None
-        if found is not None:
-            from .fence import FENCE
-
-            FENCE.cache = os.path.realpath(found.folder)
-        _CACHE.append(found)
-    return _CACHE[0]
-
-
 def check(job: CheckJob) -> dict[str, Any]:
-    """Lint (or fix) the upload inside the fence: the findings document, or a rendered format.
-    An identical request (the same bytes and options) is answered from the cache."""
-    cache = worker_cache()
-    if cache is None or job.settings.confirm:
-        return _check(job, None)
-    from urdflint.cache import deps, keys
-    from urdflint.cli.parallel import settings_key
+    """Lint (or fix) the upload inside the fence: the findings document, or a rendered format;
+    an identical request is answered from the analysis cache (``caching.py``)."""
+    from .caching import answered
 
-    parts = (
-        deps.digest_bytes(job.urdf),
-        deps.digest_file(job.zip) if job.zip is not None else None,
-        job.name,
-        settings_key(job.settings),
-        job.fmt, job.svg, job.matrix, job.fix, job.unsafe_fixes, job.scene,
-        keys.canonical(job.zip_limits),
-    )  # fmt: skip
-    found = cache.get("response", *parts)
-    if isinstance(found, dict) and found.get("status") == 200:
-        return found
-    answer = _check(job, cache)
-    if answer.get("status") == 200:
-        cache.put("response", answer, *parts)
-    cache.finish()
-    return answer
+    return answered(job, _check)
 
 
 def _check(job: CheckJob, cache: Any) -> dict[str, Any]:

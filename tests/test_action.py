@@ -7,6 +7,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +20,7 @@ ACTION = ROOT / "action.yml"
 MODELS = FIXTURES / "models"
 DOCUMENTED = {"paths", "fail-on", "target", "baseline", "sarif-file"}
 BIN = Path(sys.executable).parent
+RUNNER_TEMP = Path(tempfile.mkdtemp(prefix="urdflint-runner-temp-"))  # ${{ runner.temp }}
 
 pytestmark = pytest.mark.skipif(shutil.which("bash") is None, reason="bash is not installed")
 
@@ -68,6 +70,7 @@ def inputs_env(action: dict[str, Any], name: str, values: dict[str, str]) -> dic
             given = values.get(input_name, str(spec.get("default", "")))
             value = value.replace("${{ inputs." + input_name + " }}", given)
         value = value.replace("${{ github.action_path }}", str(ROOT))
+        value = value.replace("${{ runner.temp }}", str(RUNNER_TEMP))
         assert "${{" not in value, key
         env[key] = value
     return env
@@ -87,6 +90,23 @@ def run_step(
         text=True,
         timeout=300,
     )
+
+
+def test_the_analysis_cache_is_kept_between_runs_keyed_on_the_version(action) -> None:
+    """actions/cache restores the newest cache of this urdflint version into the folder the
+    run step points urdflint at; cache: false runs without one."""
+    cached = step(action, "Restore urdflint's analysis cache")
+    assert cached["uses"].startswith("actions/cache@") and cached["if"] == "inputs.cache == 'true'"
+    assert "steps.install.outputs.version" in cached["with"]["key"]
+    assert cached["with"]["restore-keys"].strip().endswith("-")
+    env = step(action, "Run urdflint")["env"]
+    assert env["URDFLINT_CACHE_DIR"] == cached["with"]["path"]
+    done = run_step(action, "Run urdflint", {"paths": "fixtures/models/broken_arm.urdf"})
+    assert done.returncode == 1, done.stderr
+    assert (RUNNER_TEMP / "urdflint-cache" / "analysis-v1" / "check").is_dir()
+    shutil.rmtree(RUNNER_TEMP / "urdflint-cache")
+    off = run_step(action, "Run urdflint", {"paths": "fixtures/models/", "cache": "false"})
+    assert off.returncode == 1 and not (RUNNER_TEMP / "urdflint-cache").exists()
 
 
 def annotations(out: str) -> list[str]:

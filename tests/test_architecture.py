@@ -4,7 +4,7 @@ and no function or module grows past what one reader can hold.
 Imports are read with ``ast``: module-level and function-level imports both count, imports
 under ``if TYPE_CHECKING:`` do not (they never run). The layers, lowest first:
 
-    model <- sources <- engine <- rules, outputs, engines <- server <- cli
+    model <- cache <- sources <- engine <- rules, outputs, engines <- server <- cli
 
 A module may import its own layer and the layers below it; ``rules``, ``outputs`` and
 ``engines`` do not import each other (the E rules read the engines' outcomes through the
@@ -27,6 +27,7 @@ SOURCE_DIRS = {"urdflint": ROOT / "urdflint", "urdflint.rules": ROOT / "rules",
                "urdflint.server": ROOT / "server"}  # fmt: skip
 LAYERS = {
     "urdflint.model": 0,
+    "urdflint.cache": 0.5,
     "urdflint.sources": 1,
     "urdflint.engine": 2,
     "urdflint.rules": 3,

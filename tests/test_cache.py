@@ -459,7 +459,7 @@ def test_a_read_only_folder_really_read_only(tmp_path: Path) -> None:
     try:
         assert lint(robot, Cache(cache_dir)) == first
     finally:
-        for folder, dirs, _ in os.walk(cache_dir):
+        for folder, _dirs, _ in os.walk(cache_dir):
             os.chmod(folder, 0o700)
 
 
@@ -471,7 +471,7 @@ def test_the_size_stays_under_the_limit_least_recently_used_first(tmp_path: Path
     store.get("x", f"{0:040x}")  # used recently: kept
     removed = store.collect(force=True)
     assert removed > 0
-    count, size = store.size()
+    _count, size = store.size()
     assert size <= 20_000
     assert store.get("x", f"{0:040x}") is not None
     assert store.get("x", f"{1:040x}") is None
@@ -546,9 +546,12 @@ def test_cli_cache_dir_no_cache_info_and_clean(tmp_path: Path) -> None:
     assert f"folder:  {folder} (usable)" in text.stdout
     clean = run_cli("cache", "clean", "--cache-dir", str(folder))
     assert clean.returncode == 0 and "removed" in clean.stdout
-    assert json.loads(
-        run_cli("cache", "info", "--cache-dir", str(folder), "--format", "json").stdout
-    )["entries"] == 0
+    assert (
+        json.loads(run_cli("cache", "info", "--cache-dir", str(folder), "--format", "json").stdout)[
+            "entries"
+        ]
+        == 0
+    )
 
 
 def test_cache_dir_from_the_configuration(tmp_path: Path) -> None:

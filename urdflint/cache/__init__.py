@@ -153,6 +153,26 @@ class Cache:
             deps.resume(token)
 
 
+def configured(data: Mapping[str, Any], base: Path) -> tuple[Path | None, int | None]:
+    """``cache-dir`` (relative to the configuration's folder) and ``cache-max-size`` of a
+    configuration table; ``ValueError`` names the key that is wrong."""
+    folder = size = None
+    if "cache-dir" in data:
+        value = data["cache-dir"]
+        if not isinstance(value, str) or not value.strip():
+            raise ValueError("'cache-dir' must be the path of a folder")
+        folder = base / Path(value).expanduser()
+    if "cache-max-size" in data:
+        try:
+            size = parse_size(data["cache-max-size"])
+        except (ValueError, TypeError, AttributeError):
+            raise ValueError(
+                '\'cache-max-size\' must be a size such as "512M" or "2G", '
+                f"not {data['cache-max-size']!r}"
+            ) from None
+    return folder, size
+
+
 def code_folders() -> tuple[str, ...]:
     """Where Python's and urdflint's own code lives: what is read there is code (covered by
     :func:`keys.code_version`), never an input of the robot."""

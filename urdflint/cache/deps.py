@@ -162,7 +162,7 @@ def current() -> Recorder | None:
     return _CURRENT.get()
 
 
-class recording:  # noqa: N801 - used as a context manager, like open()
+class recording:
     """``with recording() as rec:`` collects the inputs of what runs inside."""
 
     def __init__(self, ignore: tuple[str, ...] = ()) -> None:

@@ -1,10 +1,12 @@
 """Cache keys: urdflint's code and the libraries that shape a result, and a stable digest of
 any settings object.
 
-:func:`code_version` changes with urdflint's version, with any change to its installed source
-files (an editable install under development gives no stale result), and with the versions
-of Python and of the libraries whose answers end up in findings (lxml, xacro, trimesh,
-Pinocchio, numpy, scipy, pycollada) or whose absence skips rules.
+:func:`code_version` changes with urdflint's version, with any change to its code (the
+hashes of an installed wheel's files, or the content of a source checkout's files: an
+editable install under development gives no stale result, a reinstall of the same code keeps
+the cache), and with the versions of Python and of the libraries whose answers end up in
+findings (lxml, xacro, trimesh, Pinocchio, numpy, scipy, pycollada) or whose absence skips
+rules.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+PACKAGE = Path(__file__).resolve().parent.parent  # urdflint/
 LIBRARIES = ("lxml", "xacro", "trimesh", "pin", "numpy", "scipy", "pycollada", "yourdfpy")
 
 
@@ -55,20 +58,42 @@ def canonical(value: Any) -> Any:
 @functools.lru_cache(maxsize=1)
 def code_version() -> str:
     """What urdflint's results depend on besides its inputs (see the module docstring)."""
-    from urdflint import __version__
+    version = getattr(sys.modules.get("urdflint"), "__version__", "")  # the package's own
 
-    parts: list[Any] = [__version__, sys.version, sys.platform]
-    for folder in _source_folders():
-        parts.append(_tree(folder))
+    parts: list[Any] = [version, sys.version, sys.platform, _installed_code()]
     for name in LIBRARIES:
         parts.append((name, _library(name)))
     return digest(*parts)
 
 
-def _source_folders() -> list[Path]:
-    import urdflint
+def _installed_code() -> str:
+    """A digest of urdflint's code: the ``RECORD`` of an installed wheel (the hash of every
+    file it installed: the same on every machine and every CI run), else, for a source
+    checkout or an editable install, the content of its source files."""
+    package = os.path.realpath(PACKAGE)
+    for folder, names in _site_listings():
+        for entry in names:
+            if entry.startswith("urdflint-") and entry.endswith(".dist-info"):
+                if not package.startswith(os.path.realpath(folder) + os.sep):
+                    continue  # an editable install: the code is elsewhere
+                try:
+                    with open(os.path.join(folder, entry, "RECORD"), "rb") as handle:
+                        return hashlib.blake2b(handle.read(), digest_size=16).hexdigest()
+                except OSError:
+                    break
+    found = hashlib.blake2b(digest_size=16)
+    for source in _source_folders():
+        for name, path in _tree(source):
+            try:
+                with open(path, "rb") as handle:
+                    found.update(name.encode() + b"\0" + handle.read() + b"\0")
+            except OSError:
+                continue
+    return found.hexdigest()
 
-    folders = [Path(urdflint.__file__).parent]
+
+def _source_folders() -> list[Path]:
+    folders = [PACKAGE]
     for name in ("urdflint.rules", "urdflint.server"):
         try:
             spec = importlib.util.find_spec(name)
@@ -79,20 +104,15 @@ def _source_folders() -> list[Path]:
     return list(dict.fromkeys(folders))
 
 
-def _tree(folder: Path) -> list[tuple[str, int, int]]:
-    """(relative path, size, modification time) of every source and data file below."""
-    found: list[tuple[str, int, int]] = []
+def _tree(folder: Path) -> list[tuple[str, str]]:
+    """(relative path, path) of every source and data file below, in a stable order."""
+    found: list[tuple[str, str]] = []
     for top, dirs, files in os.walk(folder):
         dirs[:] = sorted(d for d in dirs if d != "__pycache__" and not d.startswith("."))
         for name in sorted(files):
-            if not name.endswith((".py", ".txt", ".cc", ".json")):
-                continue
-            path = os.path.join(top, name)
-            try:
-                info = os.stat(path)
-            except OSError:
-                continue
-            found.append((os.path.relpath(path, folder), info.st_size, info.st_mtime_ns))
+            if name.endswith((".py", ".txt", ".cc", ".json")):
+                path = os.path.join(top, name)
+                found.append((os.path.relpath(path, folder), path))
     return found
 
 
@@ -128,3 +148,21 @@ def _site_listings() -> tuple[tuple[str, tuple[str, ...]], ...]:
         except OSError:
             continue
     return tuple(found)
+
+
+def settings_key(settings: Any) -> Any:
+    """What of a file's settings shapes its result (not where the cache lives)."""
+    return canonical(dataclasses.replace(settings, cache_dir=None, cache_max_size=None))
+
+
+def context_key(context: Any) -> Any:
+    """What of a run's context shapes a result besides the files it reads."""
+    env = context.environ if context.environ is not None else os.environ
+    return (
+        {name: str(Path(folder).resolve()) for name, folder in context.package_paths.items()},
+        str(context.root) if context.root is not None else None,
+        dict(context.q),
+        getattr(context.workspace, "key", None),
+        {name: env.get(name) for name in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")},
+        os.getcwd(),
+    )

@@ -94,6 +94,7 @@ def _options(check: argparse.ArgumentParser) -> None:
         "engines did)",
     )
     _more_options(check)
+    cache_options(check)
     fix.add_options(check)
     _jobs_option(check)
 
@@ -170,4 +171,3 @@ def _more_options(check: argparse.ArgumentParser) -> None:
         "e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
     )
     gate_options(check)
-    cache_options(check)

@@ -79,9 +79,9 @@ def lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         os.path.abspath(task.name) if task.data is None else "-",
         task.shown,
         data,
-        settings_key(task.settings),
+        keys.settings_key(task.settings),
         flags.matrix,
-        context_key(context),
+        keys.context_key(context),
     )
     return cache.result(  # type: ignore[no-any-return]
         "check",
@@ -90,29 +90,6 @@ def lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         overlay=context.overlay,
         environ=context.environ,
         keep=lambda outcome: not outcome.crashed and outcome.error is None,
-    )
-
-
-def settings_key(settings: Any) -> Any:
-    """What of the settings shapes a result (not where the cache lives)."""
-    from dataclasses import replace
-
-    from urdflint.cache import keys
-
-    return keys.canonical(replace(settings, cache_dir=None, cache_max_size=None))
-
-
-def context_key(context: Any) -> Any:
-    """What of the run's context shapes a result besides the files it reads."""
-    env = context.environ if context.environ is not None else os.environ
-    workspace = getattr(context.workspace, "key", None)
-    return (
-        {name: str(Path(folder).resolve()) for name, folder in context.package_paths.items()},
-        str(context.root) if context.root is not None else None,
-        dict(context.q),
-        workspace,
-        {name: env.get(name) for name in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")},
-        os.getcwd(),
     )
 
 

@@ -18,27 +18,11 @@ from urdflint.model.finding import Severity
 
 FILENAMES = (".urdflint.toml", "urdflint.toml", "pyproject.toml")
 FAIL_ON = ("error", "warning", "info", "never")
-KEYS = frozenset(
-    {
-        "select",
-        "extend-select",
-        "ignore",
-        "severity",
-        "per-file-ignores",
-        "fail-on",
-        "targets",
-        "rules",
-        "package-paths",
-        "expect",
-        "xacro-args",
-        "per-file-xacro-args",
-        "confirm",
-        "srdf",
-        "profile",
-        "cache-dir",
-        "cache-max-size",
-    }
-)
+KEYS = frozenset({
+    "select", "extend-select", "ignore", "severity", "per-file-ignores", "fail-on", "targets",
+    "rules", "package-paths", "expect", "xacro-args", "per-file-xacro-args", "confirm", "srdf",
+    "profile", "cache-dir", "cache-max-size",
+})  # fmt: skip
 PROFILES = ("mobile", "industrial", "humanoid")  # the conventions rules (N family) to run
 ENGINES = ("mujoco", "pybullet", "drake", "pinocchio", "sdformat")  # --confirm: the E rules
 EXPECT_KEYS = frozenset({"mass", "mass-tolerance", "com", "com-tolerance", "q"})
@@ -251,22 +235,14 @@ def _inputs(settings: Settings, data: dict[str, Any], source: Path | None) -> Se
         settings = replace(settings, srdf=base / data["srdf"])
     if "profile" in data:
         settings = replace(settings, profile=profile("profile", data["profile"]))
-    if "cache-dir" in data:
-        if not isinstance(data["cache-dir"], str) or not data["cache-dir"].strip():
-            raise ConfigError("'cache-dir' must be the path of a folder")
-        base = source.parent if source is not None else Path.cwd()
-        settings = replace(settings, cache_dir=base / Path(data["cache-dir"]).expanduser())
-    if "cache-max-size" in data:
-        from urdflint.cache.store import parse_size
+    if "cache-dir" in data or "cache-max-size" in data:
+        from urdflint.cache import configured
 
         try:
-            size = parse_size(data["cache-max-size"])
-        except (ValueError, TypeError, AttributeError):
-            raise ConfigError(
-                f"'cache-max-size' must be a size such as \"512M\" or \"2G\", "
-                f"not {data['cache-max-size']!r}"
-            ) from None
-        settings = replace(settings, cache_max_size=size)
+            folder, size = configured(data, source.parent if source is not None else Path.cwd())
+        except ValueError as exc:
+            raise ConfigError(str(exc)) from None
+        settings = replace(settings, cache_dir=folder, cache_max_size=size)
     return settings
 
 

@@ -14,187 +14,27 @@ PyBullet do; trimesh only records it, so the vertices it returns are in the file
 from __future__ import annotations
 
 import logging
-import math
-import warnings
-from collections.abc import Iterator
-from contextlib import contextmanager
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from urdflint.model import optional
 from urdflint.sources.mesh_formats import TRIMESH_TYPES, collada_unit, format_name
+from urdflint.sources.mesh_info import (
+    ZERO,
+    Mat,
+    MeshInfo,
+    Solid,
+    Vec,
+    facts,
+    from_facts,
+    quiet_numpy,
+    vec,
+)
 
-Vec = tuple[float, float, float]
-Mat = tuple[Vec, Vec, Vec]
-ZERO: Vec = (0.0, 0.0, 0.0)
+__all__ = ["ZERO", "Mat", "MeshCache", "MeshInfo", "Solid", "Vec", "quiet_numpy"]
 
 MAX_MESH_BYTES = 100 * 2**20
 _QUIET = logging.NullHandler()
-
-
-@dataclass(frozen=True, slots=True)
-class Solid:
-    """Mass properties at unit density: of the mesh itself, or of its convex hull."""
-
-    kind: str  # "mesh" or "convex hull"
-    volume: float  # m^3
-    com: Vec  # in the mesh frame (after scale)
-    tensor: Mat  # about the centre of mass, at density 1 kg/m^3
-
-    def inertia(self, mass: float) -> Mat:
-        k = mass / self.volume
-        return tuple(tuple(v * k for v in row) for row in self.tensor)  # type: ignore[return-value]
-
-
-@dataclass(frozen=True)
-class MeshInfo:
-    """What one mesh file is, after ``scale``; ``error`` says why it could not be read.
-
-    ``unsupported`` marks errors that are not the file's fault (a format trimesh does
-    not read, a loader that is not installed): C009 or nobody reports those.
-
-    The facts computed on demand (watertightness, volume, mass properties, convex hull) are
-    kept in ``_memo``; with the analysis cache they are stored by the file's content
-    (:func:`facts`), and a mesh whose facts were stored is not read again: :attr:`mesh`
-    loads it only when a fact is asked for that was never computed.
-    """
-
-    path: Path
-    format: str
-    faces: int = 0
-    vertices: int = 0
-    lo: Vec = ZERO
-    hi: Vec = ZERO
-    extents: Vec = ZERO
-    error: str | None = None
-    unsupported: bool = False
-    size: int = 0  # bytes on disk
-    unit: float = 1.0  # metres per file unit (a Collada <unit meter>), already applied
-    _mesh: Any = field(default=None, repr=False, compare=False)
-    _memo: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
-    _loader: Any = field(default=None, repr=False, compare=False)  # () -> trimesh mesh
-    _stored: Any = field(default=None, repr=False, compare=False)  # (facts) -> None
-
-    @property
-    def ok(self) -> bool:
-        return self.error is None
-
-    @property
-    def largest(self) -> float:
-        return max(self.extents)
-
-    @property
-    def mesh(self) -> Any:
-        """The trimesh mesh (after scale), read from the file if only its facts were known."""
-        if self._mesh is None and self._loader is not None and self.ok:
-            object.__setattr__(self, "_mesh", self._loader())
-        return self._mesh
-
-    def _remember(self, name: str, value: Any) -> None:
-        self._memo[name] = value
-        if self._stored is not None:
-            self._stored(facts(self))
-
-    @property
-    def watertight(self) -> bool:
-        """Every edge is shared by exactly two triangles (computed on first use)."""
-        if "watertight" not in self._memo:
-            with quiet_numpy():
-                self._remember("watertight", bool(self.ok and self.mesh.is_watertight))
-        found: bool = self._memo["watertight"]
-        return found
-
-    @property
-    def volume(self) -> float | None:
-        """Enclosed volume in m³: only for watertight, consistently wound meshes."""
-        if "volume" not in self._memo:
-            self._remember("volume", _volume(self.mesh) if self.watertight else None)
-        found: float | None = self._memo["volume"]
-        return found
-
-    def solid(self) -> Solid | None:
-        """Mass properties of the mesh when it encloses a volume, else of its convex hull."""
-        if "solid" not in self._memo:
-            volume = self.volume if self.ok else None
-            self._remember("solid", _solid(self.mesh, volume) if self.ok else None)
-        found: Solid | None = self._memo["solid"]
-        return found
-
-    def hull_points(self) -> Any:
-        """The vertices of the convex hull (the vertices themselves when qhull fails on flat
-        input), an ``(n, 3)`` numpy array, or ``None`` when there are none."""
-        import numpy as np
-
-        if "hull" not in self._memo:
-            points = None
-            if self.ok:
-                with quiet_numpy():
-                    try:
-                        points = np.asarray(self.mesh.convex_hull.vertices, dtype=float)
-                    except Exception:  # qhull on flat or degenerate input
-                        points = np.asarray(self.mesh.vertices, dtype=float)
-            found = points.astype(np.float64).tobytes() if points is not None and len(points) else None
-            self._remember("hull", found)
-        raw = self._memo["hull"]
-        return None if raw is None else np.frombuffer(raw, dtype=np.float64).reshape(-1, 3)
-
-    def inertia(self, mass: float) -> tuple[Mat, str] | None:
-        """Inertia tensor about the centre of mass at ``mass`` kg, and which solid gave it."""
-        solid = self.solid()
-        return None if solid is None else (solid.inertia(mass), solid.kind)
-
-    def center_mass(self) -> tuple[Vec, str] | None:
-        """Centre of mass (uniform density) in the mesh frame, and which solid gave it."""
-        solid = self.solid()
-        return None if solid is None else (solid.com, solid.kind)
-
-
-FACTS = ("format", "faces", "vertices", "lo", "hi", "extents", "error", "unsupported", "size",
-         "unit")  # fmt: skip
-
-
-def facts(info: MeshInfo) -> dict[str, Any]:
-    """What the cache keeps of a mesh: plain values, no trimesh object."""
-    found = {name: getattr(info, name) for name in FACTS}
-    found["memo"] = dict(info._memo)
-    return found
-
-
-def from_facts(path: Path, found: dict[str, Any], loader: Any, stored: Any) -> MeshInfo:
-    values = {name: found[name] for name in FACTS}
-    memo = dict(found.get("memo") or {})
-    return MeshInfo(path, **values, _memo=memo, _loader=loader, _stored=stored)
-
-
-def _vec(values: Any) -> Vec:
-    return (float(values[0]), float(values[1]), float(values[2]))
-
-
-def _solid(mesh: Any, volume: float | None) -> Solid | None:
-    with quiet_numpy():
-        return _solid_of(mesh, volume)
-
-
-def _solid_of(mesh: Any, volume: float | None) -> Solid | None:
-    try:
-        if volume is not None and volume > 0:
-            return _properties(mesh, "mesh")
-        hull = mesh.convex_hull
-        if hull is None or len(hull.faces) == 0 or not hull.volume > 0:
-            return None
-        return _properties(hull, "convex hull")
-    except Exception:  # qhull on flat or degenerate input
-        return None
-
-
-def _properties(mesh: Any, kind: str) -> Solid | None:
-    props = mesh.mass_properties
-    volume = float(props["volume"])
-    if not (volume > 0 and math.isfinite(volume)):
-        return None
-    tensor = tuple(_vec(row) for row in props["inertia"])
-    return Solid(kind, volume, _vec(props["center_mass"]), tensor)  # type: ignore[arg-type]
 
 
 def _one_line(exc: BaseException) -> str:
@@ -287,7 +127,9 @@ class MeshCache:
         from urdflint import cache as caching
         from urdflint.cache import deps
 
-        digest = self.cache.digest(str(path), info)
+        cache = self.cache
+        assert cache is not None
+        digest = cache.digest(str(path), info)
         deps.note_file(path)
         if digest is None:
             return self._read(path, ext, scale, info.st_size)
@@ -295,11 +137,11 @@ class MeshCache:
 
         def store(found: dict[str, Any]) -> None:
             caching.remember(key, found)
-            self.cache.put("mesh", found, *key)
+            cache.put("mesh", found, *key)
 
         found = caching.MEMORY.get(key)
         if found is None:
-            found = self.cache.get("mesh", *key)
+            found = cache.get("mesh", *key)
             if isinstance(found, dict):
                 caching.remember(key, found)
         if isinstance(found, dict):
@@ -411,9 +253,9 @@ def _describe(
         ext,
         faces,
         vertices,
-        _vec(lo),
-        _vec(hi),
-        _vec(hi - lo),
+        vec(lo),
+        vec(hi),
+        vec(hi - lo),
         size=size,
         unit=unit,
         _mesh=mesh,
@@ -432,34 +274,6 @@ def _empty_reason(path: Path) -> str:
     if head.startswith((b"<!doctype html", b"<html")):
         return "the file is an HTML page, not a mesh"
     return "the file holds no triangles"
-
-
-@contextmanager
-def quiet_numpy() -> Iterator[None]:
-    """Degenerate meshes make numpy divide by zero: the result is checked, not printed."""
-    import numpy as np
-
-    with warnings.catch_warnings(), np.errstate(all="ignore"):
-        warnings.simplefilter("ignore")
-        yield
-
-
-def _volume(mesh: Any) -> float | None:
-    with quiet_numpy():
-        return _volume_of(mesh)
-
-
-def _volume_of(mesh: Any) -> float | None:
-    try:
-        if not mesh.is_winding_consistent:
-            return None
-        value = float(mesh.volume)
-        if value < 0:  # consistently inward normals: the same solid
-            mesh.invert()
-            value = -value
-    except Exception:
-        return None
-    return value if value > 0 and math.isfinite(value) else None
 
 
 def assets_resolver(path: Path, root: Path | None = None) -> Any:
