@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import logging
 import os
-import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, TypeVar
@@ -41,6 +40,7 @@ class Cache:
         self.folder = Path(folder) if folder is not None else default_dir()
         self.store = Store(self.folder, max_bytes)
         self.ignore = (str(self.folder.resolve()) + os.sep, *code_folders())
+        self.pending: dict[tuple[str, str], Any] = {}
         if self.store.problem:
             log.warning("urdflint: cache not used: %s", self.store.problem)
 
@@ -101,6 +101,7 @@ class Cache:
                 self.store.put(kind, key, (inputs, value))
             finally:
                 deps.resume(token)
+        self.flush()
         return value
 
     # -- plain values by content --------------------------------------------------------
@@ -119,31 +120,27 @@ class Cache:
         finally:
             deps.resume(token)
 
+    def defer(self, kind: str, value: Any, *parts: Any) -> None:
+        """Store ``value`` when the current result is stored (a later value for the same key
+        replaces it: a mesh gains facts as rules ask for them, and is written once)."""
+        self.pending[(kind, keys.digest(keys.code_version(), kind, parts))] = value
+
+    def flush(self) -> None:
+        token = deps.paused()
+        try:
+            while self.pending:
+                (kind, key), value = self.pending.popitem()
+                self.store.put(kind, key, value)
+        finally:
+            deps.resume(token)
+
     def digest(self, path: str, info: os.stat_result | None = None) -> str | None:
-        """A file's content digest, remembered on disk by its identity (path, size, time,
-        inode), so a mesh seen by an earlier run is not read again to be recognised."""
-        if info is None:
-            try:
-                info = os.stat(path)
-            except OSError:
-                return None
-        identity = (path, info.st_size, info.st_mtime_ns, info.st_ino)
-        memo = deps._MEMO.get(identity)
-        if memo is not None:
-            return memo
-        racy = time.time() - info.st_mtime <= deps.RACY
-        if not racy:
-            found = self.get("digest", *identity)
-            if isinstance(found, str):
-                deps._MEMO[identity] = found
-                return found
-        found = deps.file_digest(path, info)
-        if found is not None and not racy:
-            self.put("digest", found, *identity)
-        return found
+        """A file's content digest (read once per process for one size, time and inode)."""
+        return deps.file_digest(path, info)
 
     def finish(self) -> None:
-        """End of a run: keep the folder under its size limit."""
+        """End of a run: write what is pending, keep the folder under its size limit."""
+        self.flush()
         token = deps.paused()
         try:
             self.store.collect()

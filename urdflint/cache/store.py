@@ -93,6 +93,7 @@ class Store:
         self.base = self.folder / FORMAT
         self.max_bytes = max_bytes
         self.stats = Stats()
+        self.folders: set[Path] = set()  # entry folders known to exist
         self.usable, self.writable, self.problem = self._open()
 
     # -- opening ------------------------------------------------------------------------
@@ -166,7 +167,9 @@ class Store:
         data = MAGIC + len(payload).to_bytes(8, "little") + digest + payload
         path = self.path(kind, key)
         try:
-            path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+            if path.parent not in self.folders:
+                path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+                self.folders.add(path.parent)
             handle, temporary = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
             try:
                 with os.fdopen(handle, "wb") as out:

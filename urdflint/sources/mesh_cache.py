@@ -137,7 +137,7 @@ class MeshCache:
 
         def store(found: dict[str, Any]) -> None:
             caching.remember(key, found)
-            cache.put("mesh", found, *key)
+            cache.defer("mesh", found, *key)
 
         found = caching.MEMORY.get(key)
         if found is None:
