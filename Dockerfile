@@ -52,7 +52,8 @@ LABEL org.opencontainers.image.title="urdflint" \
       org.opencontainers.image.description="Linter and validation service for robot descriptions (URDF and xacro)" \
       org.opencontainers.image.licenses="Apache-2.0"
 # Service limits (server/limits.py; override with docker run -e NAME=value). JOBS is set
-# because the CPU count a container sees ignores its CPU quota: match it to --cpus.
+# because the CPU count a container sees ignores its CPU quota: match it to --cpus. The
+# workers' analysis cache is in /tmp (the user has no home); mount a volume there to keep it.
 ENV PATH=/opt/venv/bin:$PATH \
     PYTHONDONTWRITEBYTECODE=1 \
     PYTHONUNBUFFERED=1 \
@@ -61,7 +62,9 @@ ENV PATH=/opt/venv/bin:$PATH \
     URDFLINT_MAX_ZIP_BYTES=100M \
     URDFLINT_TIMEOUT=60 \
     URDFLINT_JOBS=2 \
-    URDFLINT_QUEUE=16
+    URDFLINT_QUEUE=16 \
+    URDFLINT_CACHE_DIR=/tmp/urdflint-cache \
+    URDFLINT_CACHE_MAX_SIZE=512M
 RUN groupadd --system --gid 10001 urdflint \
  && useradd --system --uid 10001 --gid 10001 --no-create-home --home-dir /nonexistent \
       --shell /usr/sbin/nologin urdflint
