@@ -73,23 +73,10 @@ class Cache:
         stored (an internal error is not).
         """
         key = keys.digest(keys.code_version(), kind, parts)
+        hit, value = self._replayed(kind, key, overlay, environ)
+        if hit:
+            return value  # type: ignore[no-any-return]
         outer = deps.current()
-        token = deps.paused()
-        try:
-            entry = self.store.get(kind, key)
-        finally:
-            deps.resume(token)
-        if isinstance(entry, tuple) and len(entry) == 2:
-            found, value = entry
-            token = deps.paused()
-            try:
-                fresh = deps.unchanged(found, overlay, environ)
-            finally:
-                deps.resume(token)
-            if fresh:
-                if outer is not None:
-                    outer.inherit(found)
-                return value  # type: ignore[no-any-return]
         with deps.recording(self.ignore) as recorder:
             value = compute()
             inputs = recorder.deps()
@@ -103,6 +90,40 @@ class Cache:
                 deps.resume(token)
         self.flush()
         return value
+
+    def replayed(
+        self,
+        kind: str,
+        parts: tuple[Any, ...],
+        *,
+        overlay: Mapping[str, bytes] | None = None,
+        environ: Mapping[str, str] | None = None,
+    ) -> tuple[bool, Any]:
+        """``(True, value)`` when :meth:`result` would replay, else ``(False, None)``."""
+        key = keys.digest(keys.code_version(), kind, parts)
+        return self._replayed(kind, key, overlay, environ)
+
+    def _replayed(
+        self,
+        kind: str,
+        key: str,
+        overlay: Mapping[str, bytes] | None,
+        environ: Mapping[str, str] | None,
+    ) -> tuple[bool, Any]:
+        outer = deps.current()
+        token = deps.paused()
+        try:
+            entry = self.store.get(kind, key)
+            if not (isinstance(entry, tuple) and len(entry) == 2):
+                return False, None
+            found, value = entry
+            if not deps.unchanged(found, overlay, environ):
+                return False, None
+        finally:
+            deps.resume(token)
+        if outer is not None:
+            outer.inherit(found)
+        return True, value
 
     # -- plain values by content --------------------------------------------------------
 

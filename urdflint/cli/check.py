@@ -49,8 +49,6 @@ class Run:
 
 
 def run(args: argparse.Namespace) -> int:
-    from urdflint.engine import linter
-
     try:
         finder = SettingsFinder(args)
     except config.ConfigError as exc:
@@ -63,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
     files, errors = collect(args.paths, context.workspace)
     files = as_entries(_changed_only(args, files), context.workspace)
     accepted = _load_baseline(args)
-    if args.emit_expanded and not (len(files) == 1 and linter.is_xacro(files[0])):
+    if args.emit_expanded and not (len(files) == 1 and files[0].lower().endswith(".xacro")):
         raise UsageError("--emit-expanded needs exactly one xacro file")
     reports = _reports(args)
 

@@ -70,19 +70,9 @@ def lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
     read changed (not with ``--emit-expanded``, which must write the expansion, nor with
     ``--confirm``, whose engines are not part of the key)."""
     cache = getattr(context, "cache", None)
-    if cache is None or flags.emit_expanded or task.settings.confirm:
+    parts = _cache_parts(task, context, flags)
+    if cache is None or parts is None:
         return _lint_one(task, context, flags)
-    from urdflint.cache import keys
-
-    data = keys.canonical(task.data) if task.data is not None else None
-    parts = (
-        os.path.abspath(task.name) if task.data is None else "-",
-        task.shown,
-        data,
-        keys.settings_key(task.settings),
-        flags.matrix,
-        keys.context_key(context),
-    )
     return cache.result(  # type: ignore[no-any-return]
         "check",
         parts,
@@ -91,6 +81,37 @@ def lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         environ=context.environ,
         keep=lambda outcome: not outcome.crashed and outcome.error is None,
     )
+
+
+def _cache_parts(task: Task, context: Any, flags: Flags) -> tuple[Any, ...] | None:
+    """The key of a task's result in the analysis cache (None: not cached)."""
+    if getattr(context, "cache", None) is None or flags.emit_expanded or task.settings.confirm:
+        return None
+    from urdflint.cache import keys
+
+    data = keys.canonical(task.data) if task.data is not None else None
+    return (
+        os.path.abspath(task.name) if task.data is None else "-",
+        task.shown,
+        data,
+        keys.settings_key(task.settings),
+        flags.matrix,
+        keys.context_key(context),
+    )
+
+
+def _replayed(tasks: Sequence[Task], context: Any, flags: Flags) -> list[Outcome | None]:
+    """Each task's outcome replayed from the cache, or None where it must be computed."""
+    found: list[Outcome | None] = []
+    for task in tasks:
+        parts = _cache_parts(task, context, flags)
+        hit, value = (False, None)
+        if parts is not None:
+            hit, value = context.cache.replayed(
+                "check", parts, overlay=context.overlay, environ=context.environ
+            )
+        found.append(value if hit else None)
+    return found
 
 
 def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
@@ -144,7 +165,26 @@ def run(tasks: Sequence[Task], context: Any, flags: Flags, jobs: int) -> Iterato
                 yield lint_one(task, context, flags)
                 progress.step()
             return
-        yield from _pooled(tasks, context, flags, jobs, progress)
+        if getattr(context, "cache", None) is None:
+            yield from _pooled(tasks, context, flags, jobs, progress)
+            return
+        # what the cache replays needs no pool: only the other files go to the processes
+        done = _replayed(tasks, context, flags)
+        todo = [task for task, outcome in zip(tasks, done, strict=True) if outcome is None]
+        jobs = min(jobs, len(todo))
+        fresh = iter(
+            (lint_one(t, context, flags) for t in todo)
+            if jobs <= 1
+            else _pooled(todo, context, flags, jobs, progress)
+        )
+        for outcome in done:
+            if outcome is None:
+                outcome = next(fresh)
+                if jobs <= 1:
+                    progress.step()
+            else:
+                progress.step()
+            yield outcome
     finally:
         progress.close()
 
