@@ -6,13 +6,21 @@ Its findings land in the files where the defects are written, so one analysis ca
 diagnostics in several files, and a file's diagnostics are the union of the analyses that
 reach it. A xacro macro file that is not a robot by itself is analysed through the entry files
 of its package that include it.
+
+Every buffer change takes a new *stamp*; an analysis remembers the stamp of each file it read.
+It is *current* while none of them changed since, and a file shows only the findings of the
+analyses that read its current text (*fresh* for it): the line numbers of a finding belong to
+the text it was computed from, and the edit may have fixed (or moved) what an older analysis
+found there. The findings of an analysis in the files that did not change stay shown until it
+is redone.
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -40,6 +48,18 @@ class Analysis:
     files: frozenset[str] = frozenset()  # every file the lint read (entry and includes)
     document: Any = None
     library: bool = False  # the entry is a macro file, not a robot
+    seen: dict[str, int] = field(default_factory=dict)  # file read -> its stamp then
+    epoch: int = 0  # the configuration it was linted with
+    gone: bool = False  # the entry could not be read
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """The buffers at one moment: their bytes (for the lint) and their stamps."""
+
+    overlay: dict[str, bytes]
+    stamps: dict[str, int]
+    epoch: int
 
 
 class Analyzer:
@@ -50,6 +70,9 @@ class Analyzer:
 
         self.roots = [r.resolve() for r in roots] or [Path.cwd()]
         self.buffers: dict[str, str] = {}
+        self.stamps: dict[str, int] = {}  # file -> stamp of its last change (absent: 0)
+        self.epoch = 0  # configuration changes
+        self._clock = itertools.count(1)
         self.analyses: dict[str, Analysis] = {}
         self.workspace = workspace.Packages(self.roots)
         self.finder = self._finder()
@@ -61,14 +84,27 @@ class Analyzer:
 
     def configuration_changed(self) -> None:
         self.finder = self._finder()
+        self.epoch += 1
 
     # -- buffers ------------------------------------------------------------------------
 
-    def open(self, path: str, text: str) -> None:
-        self.buffers[os.path.abspath(path)] = text
+    def open(self, path: str, text: str) -> bool:
+        """Take ``text`` as ``path``'s buffer; whether the file's text changed (new stamp)."""
+        full = os.path.abspath(path)
+        changed = text != self.text(full)
+        self.buffers[full] = text
+        if changed:
+            self.stamps[full] = next(self._clock)
+        return changed
 
-    def close(self, path: str) -> None:
-        self.buffers.pop(os.path.abspath(path), None)
+    def close(self, path: str) -> bool:
+        """Drop ``path``'s buffer (back to the file on disk); whether its text changed."""
+        full = os.path.abspath(path)
+        text = self.buffers.pop(full, None)
+        changed = text is not None and text != self.text(full)
+        if changed:
+            self.stamps[full] = next(self._clock)
+        return changed
 
     def text(self, path: str) -> str | None:
         """A file's current text: the open buffer, else the file on disk."""
@@ -83,18 +119,31 @@ class Analyzer:
     def overlay(self) -> dict[str, bytes]:
         return {path: text.encode("utf-8") for path, text in list(self.buffers.items())}
 
+    def snapshot(self) -> Snapshot:
+        return Snapshot(self.overlay(), dict(self.stamps), self.epoch)
+
     # -- analyses -----------------------------------------------------------------------
 
     def analyse(self, entry: str) -> Analysis:
         """Lint ``entry`` from the buffers and remember what it found where."""
+        return self.commit(self.compute(entry, self.snapshot()))
+
+    def compute(
+        self, entry: str, snapshot: Snapshot, stop: Callable[[], bool] | None = None
+    ) -> Analysis:
+        """Lint ``entry`` from ``snapshot`` (on a worker thread: it changes nothing here).
+        With ``stop``, raises :class:`linter.Superseded` before the xacro expansion and
+        between rules once ``stop()`` is true."""
         entry = os.path.abspath(entry)
         settings = self._settings(entry)
-        context = Context(workspace=self.workspace, overlay=self.overlay())
+        context = Context(workspace=self.workspace, overlay=snapshot.overlay)
+        if stop is not None and stop():
+            raise linter.Superseded(entry)
         try:  # the open buffers come through the context (xacro includes too)
-            result = linter.lint_path(Path(entry), entry, settings, context)
+            with linter.stoppable(stop or _never):
+                result = linter.lint_path(Path(entry), entry, settings, context)
         except OSError:
-            self.analyses.pop(entry, None)
-            return Analysis(entry)
+            return Analysis(entry, seen={entry: snapshot.stamps.get(entry, 0)}, gone=True)
         found: dict[str, list[Finding]] = {}
         for finding in result.findings:
             found.setdefault(os.path.abspath(finding.path), []).append(finding)
@@ -102,9 +151,28 @@ class Analyzer:
         files = {entry, *found}
         if doc is not None and doc.origin is not None:
             files |= {os.path.abspath(f.path) for f in getattr(doc.origin, "files", ())}
-        analysis = Analysis(entry, found, frozenset(files), doc, bool(doc and doc.library))
-        self.analyses[entry] = analysis
+        seen = {f: snapshot.stamps.get(f, 0) for f in files}
+        return Analysis(
+            entry, found, frozenset(files), doc, bool(doc and doc.library), seen, snapshot.epoch
+        )
+
+    def commit(self, analysis: Analysis) -> Analysis:
+        """Remember ``analysis`` as its entry's (an unreadable entry: forget the entry)."""
+        if analysis.gone:
+            self.analyses.pop(analysis.entry, None)
+        else:
+            self.analyses[analysis.entry] = analysis
         return analysis
+
+    def current(self, analysis: Analysis) -> bool:
+        """Whether nothing ``analysis`` read changed since (nor the configuration)."""
+        return analysis.epoch == self.epoch and all(
+            self.stamps.get(f, 0) == stamp for f, stamp in analysis.seen.items()
+        )
+
+    def fresh(self, analysis: Analysis, path: str) -> bool:
+        """Whether ``analysis`` read ``path``'s current text."""
+        return analysis.seen.get(path, 0) == self.stamps.get(path, 0)
 
     def _settings(self, entry: str) -> config.Settings:
         try:
@@ -151,6 +219,8 @@ class Analyzer:
         for analysis in list(self.analyses.values()):
             if analysis.library and analysis.entry == path and self.reached(path):
                 continue  # the macro file's own "library" note: its entries speak for it
+            if not self.fresh(analysis, path):
+                continue  # from an older text of the file: hidden until redone
             for finding in analysis.findings.get(path, []):
                 key = (finding.line, finding.column, finding.code, finding.message)
                 if key not in seen:
@@ -162,6 +232,13 @@ class Analyzer:
         """Whether another analysis reads ``path`` (an entry that includes it)."""
         return any(path in a.files for e, a in list(self.analyses.items()) if e != path)
 
+    def pending(self, path: str) -> bool:
+        """Whether ``path``'s diagnostics wait for a redo: every analysis that read it read an
+        older text of it (publishing now would show none of its findings)."""
+        path = os.path.abspath(path)
+        readers = [a for a in list(self.analyses.values()) if path in a.files]
+        return bool(readers) and not any(self.fresh(a, path) for a in readers)
+
     def forget(self, entry: str) -> None:
         self.analyses.pop(os.path.abspath(entry), None)
 
@@ -172,10 +249,17 @@ class Analyzer:
         own = self.analyses.get(path)
         if own is not None and own.document is not None and not own.library:
             return own.document, "self"
-        for entry, analysis in list(self.analyses.items()):
-            if entry != path and path in analysis.files and analysis.document is not None:
-                return analysis.document, "entry"
-        return None
+        covering = [
+            a
+            for e, a in list(self.analyses.items())
+            if e != path and path in a.files and a.document is not None
+        ]
+        covering.sort(key=lambda a: not self.fresh(a, path))  # from the current text first
+        return (covering[0].document, "entry") if covering else None
+
+
+def _never() -> bool:
+    return False
 
 
 def _package_root(path: Path) -> Path:
