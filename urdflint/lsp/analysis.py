@@ -49,6 +49,7 @@ class Analysis:
     document: Any = None
     library: bool = False  # the entry is a macro file, not a robot
     seen: dict[str, int] = field(default_factory=dict)  # file read -> its stamp then
+    read: dict[str, bytes] = field(default_factory=dict)  # buffer read -> its bytes then
     epoch: int = 0  # the configuration it was linted with
     gone: bool = False  # the entry could not be read
 
@@ -126,14 +127,21 @@ class Analyzer:
 
     def analyse(self, entry: str) -> Analysis:
         """Lint ``entry`` from the buffers and remember what it found where."""
-        return self.commit(self.compute(entry, self.snapshot()))
+        entry = os.path.abspath(entry)
+        return self.commit(self.compute(entry, self.snapshot(), None, self.analyses.get(entry)))
 
     def compute(
-        self, entry: str, snapshot: Snapshot, stop: Callable[[], bool] | None = None
+        self,
+        entry: str,
+        snapshot: Snapshot,
+        stop: Callable[[], bool] | None = None,
+        previous: Analysis | None = None,
     ) -> Analysis:
         """Lint ``entry`` from ``snapshot`` (on a worker thread: it changes nothing here).
         With ``stop``, raises :class:`linter.Superseded` before the xacro expansion and
-        between rules once ``stop()`` is true."""
+        between rules once ``stop()`` is true. With ``previous`` (the entry's last analysis),
+        an edit of one value in one file it read patches its expansion instead of running
+        xacro again (:mod:`urdflint.sources.xacro.patch`)."""
         entry = os.path.abspath(entry)
         settings = self._settings(entry)
         context = Context(workspace=self.workspace, overlay=snapshot.overlay)
@@ -141,7 +149,10 @@ class Analyzer:
             raise linter.Superseded(entry)
         try:  # the open buffers come through the context (xacro includes too)
             with linter.stoppable(stop or _never):
-                result = linter.lint_path(Path(entry), entry, settings, context)
+                doc = _patched(previous, snapshot, context)
+                if doc is None:
+                    doc = linter.load(Path(entry), entry, settings, context)
+                result = linter.lint_document(doc, settings)
         except OSError:
             return Analysis(entry, seen={entry: snapshot.stamps.get(entry, 0)}, gone=True)
         found: dict[str, list[Finding]] = {}
@@ -152,9 +163,9 @@ class Analyzer:
         if doc is not None and doc.origin is not None:
             files |= {os.path.abspath(f.path) for f in getattr(doc.origin, "files", ())}
         seen = {f: snapshot.stamps.get(f, 0) for f in files}
-        return Analysis(
-            entry, found, frozenset(files), doc, bool(doc and doc.library), seen, snapshot.epoch
-        )
+        read = {f: snapshot.overlay[f] for f in files if f in snapshot.overlay}
+        library = bool(doc and doc.library)
+        return Analysis(entry, found, frozenset(files), doc, library, seen, read, snapshot.epoch)
 
     def commit(self, analysis: Analysis) -> Analysis:
         """Remember ``analysis`` as its entry's (an unreadable entry: forget the entry)."""
@@ -260,6 +271,30 @@ class Analyzer:
 
 def _never() -> bool:
     return False
+
+
+def _patched(previous: Analysis | None, snapshot: Snapshot, context: Context) -> Any:
+    """``previous``'s expansion patched for the one file that changed since, if it can be."""
+    doc = previous.document if previous is not None else None
+    if previous is None or doc is None or doc.origin is None or doc.library:
+        return None
+    if previous.epoch != snapshot.epoch:
+        return None
+    changed = [f for f, stamp in previous.seen.items() if snapshot.stamps.get(f, 0) != stamp]
+    if len(changed) != 1:
+        return None
+    (path,) = changed
+    old, new = previous.read.get(path), snapshot.overlay.get(path)
+    try:
+        old = old if old is not None else Path(path).read_bytes()
+        new = new if new is not None else Path(path).read_bytes()
+    except OSError:
+        return None
+    try:
+        from urdflint.sources.xacro import patch
+    except ImportError:  # pragma: no cover - an older tree
+        return None
+    return patch.apply(doc, path, old, new, context)
 
 
 def _package_root(path: Path) -> Path:

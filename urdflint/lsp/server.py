@@ -40,6 +40,7 @@ class Job:
     snapshot: Snapshot
     nesting: int = 0  # macro files followed to get here
     origin: str | None = None  # the macro file it is analysed for (published when done)
+    previous: Analysis | None = None  # the entry's last analysis (its expansion may be patched)
     stopped: bool = False
 
 
@@ -152,7 +153,8 @@ class UrdflintServer(LanguageServer):
                 continue
             entry = next(iter(self.queue))
             nesting, origin = self.queue.pop(entry)
-            job = Job(entry, self.analyzer.snapshot(), nesting, origin)
+            previous = self.analyzer.analyses.get(entry)
+            job = Job(entry, self.analyzer.snapshot(), nesting, origin, previous)
             self.running = job
             start = time.perf_counter()
             try:
@@ -169,7 +171,7 @@ class UrdflintServer(LanguageServer):
     def _compute(self, job: Job) -> Analysis | None:
         """On the worker thread: the analysis, or None once a newer change superseded it."""
         try:
-            return self.analyzer.compute(job.entry, job.snapshot, lambda: job.stopped)
+            return self.analyzer.compute(job.entry, job.snapshot, lambda: job.stopped, job.previous)
         except linter.Superseded:
             return None
 
