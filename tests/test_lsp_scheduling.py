@@ -46,10 +46,10 @@ class Recorder:
         compute = self.server.analyzer.compute
         self.gate: Callable[[str], None] = lambda entry: None
 
-        def gated(entry: str, snapshot: Any, stop: Any = None) -> Any:
+        def gated(entry: str, *args: Any) -> Any:
             self.events.append(("compute", entry))
             self.gate(entry)
-            return compute(entry, snapshot, stop)
+            return compute(entry, *args)
 
         self.server.analyzer.compute = gated  # type: ignore[method-assign]
 
@@ -322,3 +322,28 @@ async def test_over_stdio_a_burst_publishes_only_the_last_version_last(tmp_path:
         client.exit(None)
     finally:
         await client.stop()
+
+
+@pytest.mark.asyncio
+async def test_a_value_typed_in_a_macro_file_patches_the_expansion(
+    rec: Recorder, package: Path, monkeypatch: pytest.MonkeyPatch
+):
+    urdf = package / "urdf"
+    macro, big, small = urdf / "segment.xacro", urdf / "big.urdf.xacro", urdf / "small.urdf.xacro"
+    rec.server.opened(str(macro), MACRO, 1)
+    await rec.idle()
+    loads: list[str] = []
+    load = linter.load
+
+    def counted(path: Path, *args: Any) -> Any:
+        loads.append(str(path))
+        return load(path, *args)
+
+    monkeypatch.setattr(linter, "load", counted)
+    rec.events.clear()
+    rec.server.changed(str(macro), MACRO.replace('<mass value="0.5"/>', '<mass value="-2"/>'), 2)
+    await rec.idle()
+    assert sorted(rec.computed()) == sorted([str(big), str(small)])
+    assert loads == []  # both expansions patched, xacro not run again
+    (shown,) = [d for d in rec.published(macro)[-1].diagnostics if d.code == "I002"]
+    assert "has mass -2 kg" in shown.message and shown.range.start.line == 5
