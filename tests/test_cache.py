@@ -608,3 +608,27 @@ def test_deps_record_reads_listings_and_explicit_inputs(tmp_path: Path) -> None:
     assert deps.unchanged(recorded)
     (tmp_path / "later.txt").write_text("now")
     assert not deps.unchanged(recorded)
+
+
+def test_jobs_replay_in_the_parent_and_pool_only_the_rest(tmp_path: Path) -> None:
+    """A warm --jobs run gives the --jobs 1 output byte for byte; after an edit, only the
+    edited file is linted again (the others are replayed)."""
+    folder = copy_tree(FIXTURES / "rules" / "J009", tmp_path / "robots")
+    for i in range(8):
+        shutil.copy(FIXTURES / "models" / "broken_arm.urdf", folder / f"arm{i}.urdf")
+    env = {**os.environ, "URDFLINT_CACHE_DIR": str(tmp_path / "cache")}
+    command = [sys.executable, "-m", "urdflint", "check", str(folder), "--format", "json"]
+
+    def run(*extra: str) -> str:
+        done = subprocess.run([*command, *extra], capture_output=True, text=True, env=env)
+        assert done.returncode == 1, done.stderr
+        return done.stdout
+
+    serial = run("--jobs", "1", "--no-cache")
+    assert run("--jobs", "2") == serial  # cold, in the pool
+    assert run("--jobs", "2") == serial  # warm, no pool
+    edited = folder / "arm3.urdf"
+    edited.write_text(edited.read_text().replace('value="-1.0"', 'value="-2.0"'))
+    after = run("--jobs", "2")
+    assert after == run("--jobs", "1", "--no-cache")
+    assert after != serial and "mass -2" in after
