@@ -193,26 +193,27 @@ class UrdflintServer(LanguageServer):
             # another macro file: through that one's, and so on)
             follow = self.order(job.entry, self.analyzer.entries_of(job.entry))
             for entry in follow:
-                self.queue.setdefault(entry, (job.nesting + 1, job.entry))
+                self.queue.setdefault(entry, (job.nesting + 1, job.origin or job.entry))
             if follow:
                 self._kick()
         touched = {job.entry, *analysis.findings}
         if before is not None:
             touched |= set(before.findings)
-        if follow:
-            touched.discard(job.entry)  # its entries will speak for it: no library note first
-        if job.origin is not None:
+        if follow:  # its entries will speak for it (and for the file it was analysed for)
+            touched -= {job.entry, job.origin}
+        elif job.origin is not None:
             touched.add(job.origin)  # (even if this entry turned out not to include it)
         for file in sorted(touched, key=lambda f: (f not in self.versions, f)):
             self.publish(file)
 
     def publish(self, path: str) -> None:
         """Publish ``path``'s diagnostics: the findings of the analyses that read its
-        current text (none yet, while some read an older one: nothing is published)."""
+        current text (none yet, while some read an older one: nothing is published). An
+        empty set goes to a file open in the editor, or one that showed findings."""
         if self.analyzer.pending(path):
             return
         findings = self.analyzer.findings_for(path)
-        if not findings and path not in self.shown:
+        if not findings and path not in self.shown and path not in self.versions:
             return
         text = self.analyzer.text(path) or ""
         lines = convert.lines_of(text)
