@@ -1,10 +1,9 @@
 """``urdflint lsp``: the Language Server Protocol over stdio (pygls).
 
 Diagnostics on open, on change (debounced, from the unsaved buffer) and on save, in every file
-the defects are written in; code actions (the finding's fix, a suppression comment); hover (the
-rule, a link's inertia, the robot's mass and centre of mass); the link/joint outline. Linting
-runs on one worker thread, so the editor's requests are answered while a robot is checked.
-"""
+the defects are written in, scheduled as :class:`UrdflintServer` says; code actions, hover and
+the outline are in :mod:`urdflint.lsp.requests`. Linting runs on one worker thread, so the
+editor's requests are answered while a robot is checked."""
 
 from __future__ import annotations
 
@@ -22,7 +21,7 @@ from pygls.lsp.server import LanguageServer
 
 from urdflint import __version__
 from urdflint.engine import config, linter
-from urdflint.lsp import convert, describe
+from urdflint.lsp import convert, requests
 from urdflint.lsp.analysis import Analysis, Analyzer, Snapshot, wanted
 
 MAX_NESTING = 3  # macro files included by macro files, followed up to their robots
@@ -238,86 +237,6 @@ class UrdflintServer(LanguageServer):
         if self.analyzer.open(path, text):
             self.request(path, delay=DEBOUNCE)
 
-    # -- requests -------------------------------------------------------------------------
-
-    def finding_for(self, path: str, diagnostic: T.Diagnostic) -> Any:
-        data = diagnostic.data if isinstance(diagnostic.data, dict) else {}
-        for finding in self.analyzer.findings_for(path):
-            if finding.code != diagnostic.code:
-                continue
-            if (finding.line, finding.column) == (data.get("line"), data.get("column")):
-                return finding
-            if not data and finding.line - 1 == diagnostic.range.start.line:
-                return finding
-        return None
-
-    def actions(self, params: T.CodeActionParams) -> list[T.CodeAction]:
-        path = convert.path_of(params.text_document.uri)
-        if path is None:
-            return []
-        lines = convert.lines_of(self.analyzer.text(path) or "")
-        found: list[T.CodeAction] = []
-        for diagnostic in params.context.diagnostics:
-            if diagnostic.source != convert.SOURCE:
-                continue
-            finding = self.finding_for(os.path.abspath(path), diagnostic)
-            if finding is None:
-                continue
-            fix = finding.autofix
-            if fix is not None and fix.edits and not fix.unavailable:
-                edit = convert.fix_edit(fix, self.analyzer.text)
-                if edit is not None:
-                    unsafe = (
-                        " (unsafe: changes the physics)" if fix.applicability == "unsafe" else ""
-                    )
-                    found.append(
-                        T.CodeAction(
-                            f"Fix {finding.code}: {fix.description}{unsafe}",
-                            kind=T.CodeActionKind.QuickFix,
-                            diagnostics=[diagnostic],
-                            edit=edit,
-                            is_preferred=fix.applicability == "safe",
-                        )
-                    )
-            found.append(
-                T.CodeAction(
-                    f"Suppress {finding.code} ({finding.name}) with a comment",
-                    kind=T.CodeActionKind.QuickFix,
-                    diagnostics=[diagnostic],
-                    edit=convert.suppression(lines, params.text_document.uri, finding),
-                )
-            )
-        return found
-
-    def hover(self, params: T.HoverParams) -> T.Hover | None:
-        path = convert.path_of(params.text_document.uri)
-        text = self.analyzer.text(path) if path else None
-        if path is None or text is None:
-            return None
-        path = os.path.abspath(path)
-        lines = convert.lines_of(text)
-        found = describe.tag_at(text, lines, params.position)
-        if found is None:
-            return None
-        tag, start, end = found
-        here = [f for f in self.analyzer.findings_for(path) if start <= (f.line, f.column) <= end]
-        covering = self.analyzer.document_for(path)
-        doc = covering[0] if covering else None
-        element = describe.element_at(doc, path, *start)
-        value = describe.hover(doc, here, element, tag)
-        if value is None:
-            return None
-        return T.Hover(T.MarkupContent(T.MarkupKind.Markdown, value))
-
-    def outline(self, params: T.DocumentSymbolParams) -> list[T.DocumentSymbol]:
-        path = convert.path_of(params.text_document.uri)
-        if path is None:
-            return []
-        path = os.path.abspath(path)
-        covering = self.analyzer.document_for(path)
-        lines = convert.lines_of(self.analyzer.text(path) or "")
-        return describe.symbols(covering[0] if covering else None, path, lines)
-
 
 def initialized(ls: UrdflintServer, params: T.InitializedParams) -> None:
     found = (convert.path_of(f.uri) for f in ls.workspace.folders.values())
@@ -367,15 +286,15 @@ def did_close(ls: UrdflintServer, params: T.DidCloseTextDocumentParams) -> None:
 
 
 def code_action(ls: UrdflintServer, params: T.CodeActionParams) -> list[T.CodeAction]:
-    return ls.actions(params)
+    return requests.actions(ls.analyzer, params)
 
 
 def hover(ls: UrdflintServer, params: T.HoverParams) -> T.Hover | None:
-    return ls.hover(params)
+    return requests.hover(ls.analyzer, params)
 
 
 def document_symbol(ls: UrdflintServer, params: T.DocumentSymbolParams) -> list[T.DocumentSymbol]:
-    return ls.outline(params)
+    return requests.outline(ls.analyzer, params)
 
 
 HANDLERS: list[tuple[str, Any, Any]] = [
