@@ -91,6 +91,17 @@ class Cache:
         self.flush()
         return value
 
+    def keep(self, kind: str, parts: tuple[Any, ...], inputs: Any, value: Any) -> None:
+        """Store ``value`` with the ``inputs`` a :func:`deps.recording` saw compute it, for
+        :meth:`replayed` (a caller that computes more than it stores)."""
+        token = deps.paused()
+        try:
+            key = keys.digest(keys.code_version(), kind, parts)
+            self.store.put(kind, key, (inputs, value))
+        finally:
+            deps.resume(token)
+        self.flush()
+
     def replayed(
         self,
         kind: str,

@@ -5,17 +5,18 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from urdflint.cli.common import UsageError
+from urdflint.cli.common import UsageError, cache_options, open_cache
 
 
 def add_parser(sub: Any) -> None:
-    sub.add_parser(
+    parser = sub.add_parser(
         "lsp",
         help="run the language server over stdio (diagnostics, fixes, hover in your editor)",
         description="Speak the Language Server Protocol on stdin/stdout: diagnostics for "
         ".urdf and .xacro files as you type, quick fixes, suppression comments, hover, outline. "
         "Editors start it; see README (VS Code, Neovim, Helix).",
     )
+    cache_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -25,4 +26,18 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError("urdflint lsp needs pygls: pip install 'urdflint[lsp]'") from None
     from urdflint.lsp.server import main
 
-    return main()
+    return main(open_cache(args, _settings()))
+
+
+def _settings() -> Any:
+    """The configuration nearest the folder the editor started the server in (its
+    ``cache-dir`` and ``cache-max-size``)."""
+    from pathlib import Path
+
+    from urdflint.engine import config
+
+    try:
+        found = config.discover(Path.cwd())
+        return config.load(found) if found else None
+    except config.ConfigError:
+        return None

@@ -52,6 +52,7 @@ class Analysis:
     read: dict[str, bytes] = field(default_factory=dict)  # buffer read -> its bytes then
     epoch: int = 0  # the configuration it was linted with
     gone: bool = False  # the entry could not be read
+    replayed: bool = False  # from the analysis cache: findings only, no document yet
 
 
 @dataclass(frozen=True)
@@ -66,16 +67,17 @@ class Snapshot:
 class Analyzer:
     """Open buffers, settings per folder, and the analyses that reach each file."""
 
-    def __init__(self, roots: Iterable[Path] = ()) -> None:
+    def __init__(self, roots: Iterable[Path] = (), cache: Any = None) -> None:
         from urdflint.sources import workspace
 
+        self.cache = cache  # the analysis cache (urdflint.cache.Cache), or None
         self.roots = [r.resolve() for r in roots] or [Path.cwd()]
         self.buffers: dict[str, str] = {}
         self.stamps: dict[str, int] = {}  # file -> stamp of its last change (absent: 0)
         self.epoch = 0  # configuration changes
         self._clock = itertools.count(1)
         self.analyses: dict[str, Analysis] = {}
-        self.workspace = workspace.Packages(self.roots)
+        self.workspace = workspace.Packages(self.roots, cache)
         self.finder = self._finder()
 
     @staticmethod
@@ -144,11 +146,18 @@ class Analyzer:
         xacro again (:mod:`urdflint.sources.xacro.patch`)."""
         entry = os.path.abspath(entry)
         settings = self._settings(entry)
-        context = Context(workspace=self.workspace, overlay=snapshot.overlay)
+        context = Context(workspace=self.workspace, overlay=snapshot.overlay, cache=self.cache)
         if stop is not None and stop():
             raise linter.Superseded(entry)
+        parts = self._cache_parts(entry, settings, context) if previous is None else None
+        if parts is not None:  # a first analysis (a cold open): from the disk cache if it can
+            hit, value = self.cache.replayed("lsp", parts, overlay=snapshot.overlay)
+            if hit:
+                found, files, library = value
+                return self._analysis(entry, found, set(files), None, library, snapshot, True)
+        recorder = _recording(self.cache if parts is not None else None)
         try:  # the open buffers come through the context (xacro includes too)
-            with linter.stoppable(stop or _never):
+            with linter.stoppable(stop or _never), recorder as inputs:
                 doc = _patched(previous, snapshot, context)
                 if doc is None:
                     doc = linter.load(Path(entry), entry, settings, context)
@@ -162,10 +171,35 @@ class Analyzer:
         files = {entry, *found}
         if doc is not None and doc.origin is not None:
             files |= {os.path.abspath(f.path) for f in getattr(doc.origin, "files", ())}
+        library = bool(doc and doc.library)
+        if parts is not None and inputs is not None and not result.crashed:
+            self.cache.keep("lsp", parts, inputs.deps(), (found, sorted(files), library))
+        return self._analysis(entry, found, files, doc, library, snapshot, False)
+
+    def _analysis(
+        self,
+        entry: str,
+        found: dict[str, list[Finding]],
+        files: set[str],
+        doc: Any,
+        library: bool,
+        snapshot: Snapshot,
+        replayed: bool,
+    ) -> Analysis:
         seen = {f: snapshot.stamps.get(f, 0) for f in files}
         read = {f: snapshot.overlay[f] for f in files if f in snapshot.overlay}
-        library = bool(doc and doc.library)
-        return Analysis(entry, found, frozenset(files), doc, library, seen, read, snapshot.epoch)
+        return Analysis(
+            entry, found, frozenset(files), doc, library, seen, read, snapshot.epoch,
+            replayed=replayed,
+        )  # fmt: skip
+
+    def _cache_parts(self, entry: str, settings: Any, context: Context) -> Any:
+        """The key of an entry's findings in the analysis cache (None: no cache)."""
+        if self.cache is None:
+            return None
+        from urdflint.cache import keys
+
+        return (entry, keys.settings_key(settings), keys.context_key(context))
 
     def commit(self, analysis: Analysis) -> Analysis:
         """Remember ``analysis`` as its entry's (an unreadable entry: forget the entry)."""
@@ -271,6 +305,17 @@ class Analyzer:
 
 def _never() -> bool:
     return False
+
+
+def _recording(cache: Any) -> Any:
+    """What the lint reads, for the cache (a do-nothing block without one)."""
+    import contextlib
+
+    if cache is None:
+        return contextlib.nullcontext(None)
+    from urdflint.cache import deps
+
+    return deps.recording(cache.ignore)
 
 
 def _patched(previous: Analysis | None, snapshot: Snapshot, context: Context) -> Any:

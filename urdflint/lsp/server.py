@@ -72,11 +72,12 @@ class UrdflintServer(LanguageServer):
     of the older analyses in files that did not change stay until those are redone.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, cache: Any = None) -> None:
         super().__init__(
             "urdflint", __version__, text_document_sync_kind=T.TextDocumentSyncKind.Full
         )
-        self.analyzer = Analyzer()
+        self.cache = cache  # the analysis cache (urdflint.cache.Cache), or None
+        self.analyzer = Analyzer(cache=cache)
         self.worker = ThreadPoolExecutor(1, thread_name_prefix="urdflint-lint")
         # entry -> (nesting, the macro file it is analysed for), in the order of analysis
         self.queue: dict[str, tuple[int, str | None]] = {}
@@ -204,6 +205,9 @@ class UrdflintServer(LanguageServer):
             touched.add(job.origin)  # (even if this entry turned out not to include it)
         for file in sorted(touched, key=lambda f: (f not in self.versions, f)):
             self.publish(file)
+        if analysis.replayed:  # from the disk cache: now build its document (hover, outline,
+            self.queue.setdefault(job.entry, (job.nesting, job.origin))  # patched edits)
+            self._kick()
 
     def publish(self, path: str) -> None:
         """Publish ``path``'s diagnostics: the findings of the analyses that read its
@@ -243,7 +247,7 @@ def initialized(ls: UrdflintServer, params: T.InitializedParams) -> None:
     roots = [Path(p) for p in found if p]
     if not roots and ls.workspace.root_path:
         roots = [Path(ls.workspace.root_path)]
-    ls.analyzer = Analyzer(roots)
+    ls.analyzer = Analyzer(roots, ls.cache)
 
 
 def did_open(ls: UrdflintServer, params: T.DidOpenTextDocumentParams) -> None:
@@ -313,13 +317,13 @@ HANDLERS: list[tuple[str, Any, Any]] = [
 ]
 
 
-def build() -> UrdflintServer:
-    server = UrdflintServer()
+def build(cache: Any = None) -> UrdflintServer:
+    server = UrdflintServer(cache)
     for method, handler, options in HANDLERS:
         server.feature(method, options)(handler)
     return server
 
 
-def main() -> int:
-    build().start_io()
+def main(cache: Any = None) -> int:
+    build(cache).start_io()
     return 0
