@@ -153,8 +153,8 @@ class Analyzer:
         if parts is not None:  # a first analysis (a cold open): from the disk cache if it can
             hit, value = self.cache.replayed("lsp", parts, overlay=snapshot.overlay)
             if hit:
-                found, files, library = value
-                return self._analysis(entry, found, set(files), None, library, snapshot, True)
+                known, listed, was_library = value
+                return self._analysis(entry, known, set(listed), None, was_library, snapshot, True)
         recorder = _recording(self.cache if parts is not None else None)
         try:  # the open buffers come through the context (xacro includes too)
             with linter.stoppable(stop or _never), recorder as inputs:
