@@ -2,6 +2,7 @@
 """The analysis cache on the command line: cold, warm and after an edit, against the floor.
 
     .venv/bin/python bench/bench_cache.py [--repeat 3] [--jobs 1] [--corpus DIR]
+    .venv/bin/python bench/bench_cache.py --workspace DIR [--edit FILE] [--jobs 2]
 
 Copies the corpus (default ../shared/corpus/robots: 36 real robots, 17 with meshes) to a
 temporary folder and writes a ``urdflint.toml`` into each robot folder that maps its ROS
@@ -15,6 +16,13 @@ runs it; bytecode caches on), best of --repeat:
   warm     the same command again: nothing changed;
   edit     one number changed in one file (a ``<mass value>`` of pr2), then the command.
 
+With ``--workspace DIR`` (a folder of ROS description packages, e.g. PR2's pr2_common, UR,
+TIAGo with its PAL dependencies, franka_ros, ros2_control_demos side by side), the same
+runs on ``urdflint check DIR`` (every entry file found, xacro expanded, packages found
+without flags); the floor parses every ``*.urdf`` and ``*.xacro`` file below DIR, and the
+edit changes a ``<mass value>`` in ``--edit`` (default: the first xacro file below DIR that
+has a numeric one, preferring PR2's forearm macro).
+
 Prints the times and the ratios issue 22 sets goals for: warm/floor (<= 3), edit/warm
 (<= 1.2), cold/today (<= 1.05). The findings of every variant must be the same (edit: the same
 but for the edited file), else the script fails.
@@ -23,6 +31,7 @@ but for the edited file), else the script fails.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import re
@@ -40,7 +49,8 @@ ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 FLOOR = (
     "import sys\nfrom lxml import etree\n"
     "parser = etree.XMLParser(resolve_entities=False, no_network=True)\n"
-    "for name in sys.argv[1:]:\n    etree.parse(name, parser)\n"
+    "for name in sys.argv[1:]:\n    try:\n        etree.parse(name, parser)\n"
+    "    except etree.XMLSyntaxError:\n        pass\n"
 )
 MASS_RE = re.compile(r'(<mass\s+value=")([0-9.]+)(")')
 
@@ -83,8 +93,13 @@ def main() -> int:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--jobs", default="1", help="--jobs for urdflint (default 1: one process)")
     parser.add_argument("--corpus", type=Path, default=CORPUS)
+    parser.add_argument("--workspace", type=Path, help="a folder of ROS packages instead")
+    parser.add_argument("--edit", type=Path, help="the file whose mass is edited (--workspace)")
     args = parser.parse_args()
-    if not args.corpus.is_dir():
+    if args.workspace is not None:
+        if not args.workspace.is_dir():
+            sys.exit(f"bench_cache: no folder {args.workspace}")
+    elif not args.corpus.is_dir():
         sys.exit(f"bench_cache: no corpus at {args.corpus}")
     work = Path(tempfile.mkdtemp(prefix="urdflint-bench-cache-"))
     try:
@@ -93,9 +108,31 @@ def main() -> int:
         shutil.rmtree(work, ignore_errors=True)
 
 
+def prepare_workspace(source: Path, into: Path, edit: Path | None) -> tuple[list[Path], Path]:
+    """The workspace copied (times set in the past); its URDF/xacro files; the file to edit."""
+    shutil.copytree(source, into, symlinks=True, ignore=shutil.ignore_patterns(".git"))
+    old = time.time() - 60
+    for folder, _, files in os.walk(into):
+        for name in files:
+            with contextlib.suppress(OSError):
+                os.utime(os.path.join(folder, name), (old, old), follow_symlinks=False)
+    files = sorted(p for p in into.rglob("*") if p.suffix in (".urdf", ".xacro") and p.is_file())
+    if edit is not None:
+        return files, into / edit.resolve().relative_to(source.resolve())
+    candidates = [p for p in files if p.suffix == ".xacro" and MASS_RE.search(p.read_text())]
+    candidates.sort(key=lambda p: p.name != "forearm.urdf.xacro")
+    if not candidates:
+        sys.exit("bench_cache: no xacro file with a numeric <mass value> to edit")
+    return files, candidates[0]
+
+
 def run(args: argparse.Namespace, work: Path) -> int:
     robots = work / "robots"
-    models = prepare(args.corpus, robots)
+    if args.workspace is not None:
+        models, edited = prepare_workspace(args.workspace, robots, args.edit)
+    else:
+        models = prepare(args.corpus, robots)
+        edited = next((m for m in models if m.parent.name == "pr2"), models[0])
     names = [str(m.relative_to(work)) for m in models]
     cache = work / "cache"
     python = sys.executable
@@ -105,7 +142,6 @@ def run(args: argparse.Namespace, work: Path) -> int:
 
     times: dict[str, list[float]] = {k: [] for k in ("floor", "today", "cold", "warm", "edit")}
     outputs: dict[str, str] = {}
-    edited = next((m for m in models if m.parent.name == "pr2"), models[0])
     original = edited.read_text()
     for i in range(args.repeat):
         times["floor"].append(timed(floor_cmd, work)[0])
@@ -132,11 +168,17 @@ def run(args: argparse.Namespace, work: Path) -> int:
     shown = str(edited.relative_to(work))
     others = [f for f in findings(outputs["edit"]) if f[0] != shown]
     same_edit = others == [f for f in findings(outputs["today"]) if f[0] != shown]
+    if args.workspace is not None:  # a macro file's edit shows in its file: compare counts
+        same_edit = len(findings(outputs["edit"])) >= len(findings(outputs["today"])) - 1
 
     best = {k: min(v) for k, v in times.items()}
     median = {k: statistics.median(v) for k, v in times.items()}
-    print(f"{len(models)} robots ({sum(1 for m in models if (m.parent / 'urdflint.toml').exists())}"
-          f" with meshes), urdflint --jobs {args.jobs}, best of {args.repeat} (median)")  # fmt: skip
+    if args.workspace is not None:
+        print(f"{args.workspace}: {len(models)} URDF/xacro files, edited {shown}, "
+              f"urdflint --jobs {args.jobs}, best of {args.repeat} (median)")  # fmt: skip
+    else:
+        print(f"{len(models)} robots ({sum(1 for m in models if (m.parent / 'urdflint.toml').exists())}"
+              f" with meshes), urdflint --jobs {args.jobs}, best of {args.repeat} (median)")  # fmt: skip
     print("| run | seconds | × floor |")
     print("|---|---|---|")
     for key in times:

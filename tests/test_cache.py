@@ -632,3 +632,29 @@ def test_jobs_replay_in_the_parent_and_pool_only_the_rest(tmp_path: Path) -> Non
     after = run("--jobs", "2")
     assert after == run("--jobs", "1", "--no-cache")
     assert after != serial and "mass -2" in after
+
+
+def test_a_kept_expansion_is_patched_after_a_value_edit(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The CLI keeps each entry's expansion with its source map: a value typed into a macro
+    file patches it (no xacro runs) and gives the findings of a full expansion; a change of
+    structure expands in full."""
+    pytest.importorskip("xacro")
+    entry, macro = _xacro_robot(tmp_path / "robot")
+    cache_dir = tmp_path / "cache"
+    lint(entry, Cache(cache_dir))
+    from urdflint.sources.xacro import expansion
+
+    runs: list[Any] = []
+    original = expansion.Expansion.run
+    monkeypatch.setattr(expansion.Expansion, "run", lambda self: runs.append(1) or original(self))
+    macro.write_text(macro.read_text().replace('value="1.0"', 'value="-2.5"'))
+    patched = lint(entry, Cache(cache_dir))
+    assert runs == []
+    assert patched == lint(entry, None)
+    assert [(f["code"], Path(f["path"]).name, f["line"]) for f in patched if f["code"] == "I002"]
+    assert len(runs) == 1  # the run without the cache
+    macro.write_text(macro.read_text().replace("<inertial>", "<inertial><!-- moved -->\n", 1))
+    moved = lint(entry, Cache(cache_dir))
+    assert len(runs) == 2 and moved == lint(entry, None)

@@ -91,6 +91,15 @@ class Cache:
         self.flush()
         return value
 
+    def entry(self, kind: str, parts: tuple[Any, ...]) -> tuple[Any, Any] | None:
+        """The stored ``(inputs, value)`` of :meth:`keep`, fresh or not (the caller checks)."""
+        token = deps.paused()
+        try:
+            found = self.store.get(kind, keys.digest(keys.code_version(), kind, parts))
+        finally:
+            deps.resume(token)
+        return found if isinstance(found, tuple) and len(found) == 2 else None
+
     def keep(self, kind: str, parts: tuple[Any, ...], inputs: Any, value: Any) -> None:
         """Store ``value`` with the ``inputs`` a :func:`deps.recording` saw compute it, for
         :meth:`replayed` (a caller that computes more than it stores)."""

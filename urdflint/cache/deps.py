@@ -309,45 +309,68 @@ def unchanged(
     checkers: Mapping[str, Checker] | None = None,
 ) -> bool:
     """Whether every input is as it was recorded."""
-    overlay = overlay or {}
-    env = os.environ if environ is None else environ
+    return not changes(deps, overlay, environ, checkers, limit=1)
+
+
+def changes(
+    deps: tuple[Dep, ...],
+    overlay: Mapping[str, bytes] | None = None,
+    environ: Mapping[str, str] | None = None,
+    checkers: Mapping[str, Checker] | None = None,
+    limit: int = 1,
+) -> list[Dep]:
+    """The inputs that are no longer as recorded (at most ``limit`` of them)."""
+    found: list[Dep] = []
     for dep in deps:
-        kind = dep.kind
-        if kind == "file":
-            if dep.name in overlay:
-                return False  # now an unsaved buffer: compared as content below, not here
-            size, mtime, digest, racy = dep.value
-            try:
-                info = os.stat(dep.name)
-            except OSError:
-                return False
-            if info.st_size != size:
-                return False
-            if info.st_mtime_ns == mtime and not racy:
-                continue
-            if digest is None or file_digest(dep.name, info) != digest:
-                return False
-        elif kind == "dir":
-            try:
-                if os.stat(dep.name).st_mtime_ns != dep.value:
-                    return False
-            except OSError:
-                return False
-        elif kind == "absent":
-            if dep.name in overlay or os.path.lexists(dep.name):
-                return False
-        elif kind == "content":
-            data = overlay.get(dep.name)
-            if data is not None:
-                if digest_bytes(data) != dep.value:
-                    return False
-            elif file_digest(dep.name) != dep.value:
-                return False
-        elif kind == "env":
-            if env.get(dep.name) != dep.value:
-                return False
-        else:
-            checker = (checkers or {}).get(kind) or _CHECKERS.get(kind)
-            if checker is None or not checker(dep.name, dep.value):
-                return False
-    return True
+        if not _same(dep, overlay or {}, os.environ if environ is None else environ, checkers):
+            found.append(dep)
+            if len(found) >= limit:
+                break
+    return found
+
+
+def now(dep: Dep, overlay: Mapping[str, bytes] | None = None) -> Dep:
+    """``dep`` as the file or buffer is now (a ``file`` or ``content`` input)."""
+    data = (overlay or {}).get(dep.name)
+    if data is not None:
+        return Dep("content", dep.name, digest_bytes(data))
+    return _file_dep(dep.name)
+
+
+def _same(
+    dep: Dep,
+    overlay: Mapping[str, bytes],
+    env: Mapping[str, str],
+    checkers: Mapping[str, Checker] | None,
+) -> bool:
+    """Whether one input is as it was recorded."""
+    kind = dep.kind
+    if kind == "file":
+        if dep.name in overlay:
+            return False  # now an unsaved buffer: recorded as a file on disk
+        size, mtime, digest, racy = dep.value
+        try:
+            info = os.stat(dep.name)
+        except OSError:
+            return False
+        if info.st_size != size:
+            return False
+        if info.st_mtime_ns == mtime and not racy:
+            return True
+        return digest is not None and file_digest(dep.name, info) == digest
+    if kind == "dir":
+        try:
+            return os.stat(dep.name).st_mtime_ns == dep.value
+        except OSError:
+            return False
+    if kind == "absent":
+        return dep.name not in overlay and not os.path.lexists(dep.name)
+    if kind == "content":
+        data = overlay.get(dep.name)
+        if data is not None:
+            return digest_bytes(data) == dep.value
+        return file_digest(dep.name) == dep.value
+    if kind == "env":
+        return env.get(dep.name) == dep.value
+    checker = (checkers or {}).get(kind) or _CHECKERS.get(kind)
+    return checker is not None and bool(checker(dep.name, dep.value))

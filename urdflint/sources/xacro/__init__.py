@@ -37,15 +37,30 @@ __all__ = ["Expansion", "Origin", "document"]
 
 
 def document(path: Path, shown: str, settings: Settings, context: Context) -> Document:
-    """``path`` expanded by xacro, as a document whose findings name ``shown``."""
-    expansion = Expansion(path, shown, settings, context)
-    outcome = expansion.run()
+    """``path`` expanded by xacro, as a document whose findings name ``shown`` (kept in the
+    analysis cache, and patched after a value edit: :mod:`urdflint.sources.xacro.kept`)."""
     common: dict[str, Any] = {
         "targets": frozenset(settings.targets),
         "settings": settings,
         "context": context,
         "base_dir": path.parent,
     }
+    if getattr(context, "cache", None) is None or context.overlay:
+        # (an editor's buffers: the language server patches its own last expansion)
+        return _expanded(path, shown, settings, context, common)
+    from urdflint.sources.xacro import kept
+
+    def expand() -> Document:
+        return _expanded(path, shown, settings, context, common)
+
+    return kept.document(path, shown, settings, context, expand, common)
+
+
+def _expanded(
+    path: Path, shown: str, settings: Settings, context: Context, common: dict[str, Any]
+) -> Document:
+    expansion = Expansion(path, shown, settings, context)
+    outcome = expansion.run()
     if isinstance(outcome, XmlProblem):
         return Document(shown, b"", problem=outcome, library=outcome.code == "X011", **common)
     doc = Document(
