@@ -161,10 +161,13 @@ class Cache:
         finally:
             deps.resume(token)
 
-    def defer(self, kind: str, value: Any, *parts: Any) -> None:
-        """Store ``value`` when the current result is stored (a later value for the same key
-        replaces it: a mesh gains facts as rules ask for them, and is written once)."""
-        self.pending[(kind, keys.digest(keys.code_version(), kind, parts))] = value
+    def key(self, kind: str, *parts: Any) -> str:
+        return keys.digest(keys.code_version(), kind, parts)
+
+    def defer(self, kind: str, key: str, value: Any) -> None:
+        """Store ``value`` under :meth:`key` when the current result is stored (a later value
+        for the same key replaces it: a mesh gains facts as rules ask, and is written once)."""
+        self.pending[(kind, key)] = value
 
     def flush(self) -> None:
         token = deps.paused()

@@ -134,10 +134,11 @@ class MeshCache:
         if digest is None:
             return self._read(path, ext, scale, info.st_size)
         key = (f"{digest}.{ext}", scale)
+        stored_as = cache.key("mesh", *key)
 
         def store(found: dict[str, Any]) -> None:
             caching.remember(key, found)
-            cache.defer("mesh", found, *key)
+            cache.defer("mesh", stored_as, found)
 
         found = caching.MEMORY.get(key)
         if found is None:
