@@ -155,9 +155,12 @@ async def test_a_running_lint_stops_at_the_next_rule_boundary(
     text = path.read_text()
     started, release = threading.Event(), threading.Event()
     rules: dict[int, list[str]] = {}  # document -> the rules run on it
+    docs: list[Any] = []  # kept alive: an id is not reused by the next document
     run = linter._run
 
     def slow_rule(rule: Any, doc: Any, settings: Any) -> Any:
+        if not any(d is doc for d in docs):
+            docs.append(doc)
         ran = rules.setdefault(id(doc), [])
         ran.append(rule.code)
         if len(rules) == 1 and len(ran) == 1:
