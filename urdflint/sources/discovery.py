@@ -12,7 +12,7 @@ from __future__ import annotations
 import fnmatch
 import os
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 from lxml import etree
@@ -79,15 +79,26 @@ def entries(xacros: Sequence[Path], packages: Mapping[str, Path]) -> list[Path]:
         texts[path] = data
         if data is not None:
             patterns.extend(_include_patterns(path, data, packages))
+    included = _matcher(patterns)
     found: list[Path] = []
     for path in xacros:
         full = os.path.normpath(os.path.abspath(path))
-        if any(fnmatch.fnmatchcase(full, pattern) for pattern in patterns):
+        if included(full):
             continue  # included by another file: checked there
         data = texts[path]
         if data is None or is_robot(data, path.name.lower().endswith(".urdf.xacro")):
             found.append(path)
     return found
+
+
+def _matcher(patterns: list[str]) -> Callable[[str], bool]:
+    """Whether a path matches one of the glob ``patterns`` (as ``fnmatchcase``): literal
+    names by a set, the others by one regular expression (one ``fnmatch`` per file and
+    pattern cost 0.2 s on a workspace of 200 files)."""
+    literal = {p for p in patterns if not any(c in p for c in "*?[")}
+    globs = sorted({p for p in patterns if p not in literal})
+    regex = re.compile("|".join(f"(?:{fnmatch.translate(p)})" for p in globs)) if globs else None
+    return lambda full: full in literal or (regex is not None and regex.match(full) is not None)
 
 
 def _read(path: Path) -> bytes | None:
