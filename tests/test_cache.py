@@ -658,3 +658,15 @@ def test_a_kept_expansion_is_patched_after_a_value_edit(
     macro.write_text(macro.read_text().replace("<inertial>", "<inertial><!-- moved -->\n", 1))
     moved = lint(entry, Cache(cache_dir))
     assert len(runs) == 2 and moved == lint(entry, None)
+
+
+def test_an_srdf_written_beside_the_urdf_makes_the_result_stale(tmp_path: Path) -> None:
+    robot = tmp_path / "bad.urdf"
+    shutil.copy(FIXTURES / "rules" / "M001" / "bad.urdf", robot)
+    cache_dir = tmp_path / "cache"
+    alone = lint(robot, Cache(cache_dir))
+    assert "M001" not in {f["code"] for f in alone}
+    shutil.copy(FIXTURES / "rules" / "M001" / "bad.srdf", tmp_path / "bad.srdf")
+    paired = lint(robot, Cache(cache_dir))
+    assert "M001" in {f["code"] for f in paired}
+    assert paired == lint(robot, None)

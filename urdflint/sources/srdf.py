@@ -29,6 +29,7 @@ from weakref import WeakKeyDictionary
 
 from lxml import etree
 
+from urdflint.cache import deps
 from urdflint.model.document import MAX_BYTES, Document, XmlProblem, children
 
 if TYPE_CHECKING:
@@ -79,6 +80,15 @@ class Srdf:
         found = self.doc.attribute_at(el, attribute) if attribute else None
         line, column = found if found is not None else self.doc.start_of(el)
         return self.shown, line, column
+
+
+def _is_file(path: Path) -> bool:
+    """Whether the SRDF candidate exists; one that does not is an input of a cached result
+    (an SRDF written later beside the URDF makes it stale)."""
+    if path.is_file():
+        return True
+    deps.note_absent(path)
+    return False
 
 
 def name_of(el: etree._Element, attribute: str = "name") -> str | None:
@@ -141,7 +151,7 @@ def _real_path(doc: Document) -> Path | None:
     shown = Path(doc.path)
     if doc.base_dir is not None:
         return doc.base_dir / shown.name
-    return shown if shown.is_file() else None
+    return shown if _is_file(shown) else None
 
 
 def _allowed(doc: Document, path: Path) -> bool:
@@ -165,7 +175,7 @@ def _stem(path: Path) -> str:
 
 def _beside(real: Path) -> list[Path]:
     stem = _stem(real)
-    return [p for s in SRDF_SUFFIXES if (p := real.with_name(stem + s)).is_file()]
+    return [p for s in SRDF_SUFFIXES if _is_file(p := real.with_name(stem + s))]
 
 
 def _shown(doc: Document, real: Path, target: Path) -> str:
@@ -235,7 +245,7 @@ def _setup_assistant(doc: Document, real: Path, package: Path | None) -> Path | 
         base = doc.resolver.package_dir(urdf_package)
         if base is not None and _resolved(base / urdf_path) == target:
             candidate = folder / srdf_path
-            if candidate.is_file() and _allowed(doc, candidate):
+            if _is_file(candidate) and _allowed(doc, candidate):
                 return candidate
     return None
 
