@@ -1,6 +1,8 @@
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
 import sys
 import tempfile
 from pathlib import Path
@@ -17,6 +19,7 @@ CORPUS = SHARED / "corpus" / "robots"
 # lives in a folder of this test process, never in the user's cache.
 CACHE_DIR = Path(tempfile.mkdtemp(prefix="urdflint-test-cache-"))
 os.environ["URDFLINT_CACHE_DIR"] = str(CACHE_DIR)
+atexit.register(shutil.rmtree, CACHE_DIR, ignore_errors=True)
 
 
 def corpus_models() -> list[Path]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import atexit
 import json
 import os
 import shutil
@@ -21,6 +22,7 @@ MODELS = FIXTURES / "models"
 DOCUMENTED = {"paths", "fail-on", "target", "baseline", "sarif-file"}
 BIN = Path(sys.executable).parent
 RUNNER_TEMP = Path(tempfile.mkdtemp(prefix="urdflint-runner-temp-"))  # ${{ runner.temp }}
+atexit.register(shutil.rmtree, RUNNER_TEMP, ignore_errors=True)
 
 pytestmark = pytest.mark.skipif(shutil.which("bash") is None, reason="bash is not installed")
 
