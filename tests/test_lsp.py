@@ -264,7 +264,7 @@ def test_a_suppression_goes_right_before_an_element_that_does_not_start_its_line
     finding = Finding("a.urdf", 1, 33, "J006", "ignored-axis", Severity.INFO, "m", "/robot")
     edit = convert.suppression(lines, "file:///a.urdf", finding)
     (change,) = (edit.changes or {})["file:///a.urdf"]
-    assert change.range.start == T.Position(0, 32)
+    assert change.range.start == T.Position(0, 31)
     assert change.new_text == "<!-- urdflint: ignore[J006] ignored-axis -->"
     finding = Finding("a.urdf", 1, 3, "J006", "ignored-axis", Severity.INFO, "m", "/robot")
     (change,) = (convert.suppression(lines, "file:///a.urdf", finding).changes or {})[
@@ -305,3 +305,32 @@ async def test_a_macro_file_included_by_another_macro_file(client: LanguageClien
     )
     uri = await opened(client, urdf / "segment.xacro")
     assert [c for c in codes(client, uri) if c[0] == "J008"] == [("J008", 12, 6, 25)]
+
+
+def test_suppressing_a_finding_at_an_attribute_comments_its_element() -> None:
+    """Every suppression action on the bundled broken robot (J007, I002, J009, S006 point at
+    an attribute) keeps the file well-formed and silences that finding."""
+    from urdflint.engine import linter
+    from urdflint.engine.config import Settings
+    from urdflint.lsp import convert
+
+    path = FIXTURES / "models" / "broken_arm.urdf"
+    text = path.read_text()
+    found = linter.lint_bytes(text.encode(), str(path), Settings(), base_dir=path.parent)
+    at_attribute = 0
+    for finding in found.findings:
+        lines = convert.lines_of(text)
+        if lines[finding.line - 1][finding.column - 1 : finding.column] != "<":
+            at_attribute += 1
+        (change,) = (convert.suppression(lines, "file:///x.urdf", finding).changes or {})[
+            "file:///x.urdf"
+        ]
+        start = change.range.start
+        line = lines[start.line]
+        joined = line[: start.character] + change.new_text + line[start.character :]
+        edited = "\n".join([*lines[: start.line], joined, *lines[start.line + 1 :]])
+        after = linter.lint_bytes(edited.encode(), str(path), Settings(), base_dir=path.parent)
+        codes = [(f.code, f.element) for f in after.findings]
+        assert ("X001", "/robot") not in codes, finding
+        assert (finding.code, finding.element) not in codes, finding
+    assert at_attribute >= 4

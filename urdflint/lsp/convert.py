@@ -129,12 +129,26 @@ def fix_edit(autofix: Any, text_of: Any) -> T.WorkspaceEdit | None:
     return T.WorkspaceEdit(document_changes=changes) if changes else None
 
 
+def _tag_start(lines: list[str], row: int, column: int) -> tuple[int, int]:
+    """Where the tag holding (row, column) starts: the position itself when it is a ``<``,
+    else the last ``<`` before it (an attribute's finding; a start tag may span lines, and
+    no ``<`` is written inside one)."""
+    for r in range(row, -1, -1):
+        text = lines[r] if r < len(lines) else ""
+        found = text.rfind("<", 0, column + 1 if r == row else len(text))
+        if found >= 0:
+            return r, found
+    return row, column
+
+
 def suppression(lines: list[str], uri: str, finding: Finding) -> T.WorkspaceEdit:
     """An ``ignore`` comment right before the finding's element: on its own line above it,
     indented as it, when the element starts its line; else just before it on the line."""
     row = min(max(finding.line - 1, 0), max(len(lines) - 1, 0))
     text = lines[row] if lines else ""
     column = min(max(finding.column - 1, 0), len(text))
+    row, column = _tag_start(lines, row, column)  # a finding at an attribute: its element
+    text = lines[row] if lines else ""
     comment = f"<!-- urdflint: ignore[{finding.code}] {finding.name} -->"
     if text[:column].strip():  # something precedes the element on its line
         at = T.Position(row, units(text[:column]))
