@@ -334,3 +334,50 @@ def test_suppressing_a_finding_at_an_attribute_comments_its_element() -> None:
         assert ("X001", "/robot") not in codes, finding
         assert (finding.code, finding.element) not in codes, finding
     assert at_attribute >= 4
+
+
+def test_a_defect_seen_through_two_entries_is_one_diagnostic_with_both_calls(tmp_path) -> None:
+    """A macro file included by two robots: its defect is shown once, naming the most
+    instances, with the macro calls of both robots as related locations (issue 23, 2)."""
+    pytest.importorskip("xacro")
+    from urdflint.lsp.analysis import Analyzer
+
+    (tmp_path / "arm.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="arm" params="side">\n'
+        '    <link name="${side}_upper"/>\n'
+        '    <link name="${side}_lower"/>\n'
+        '    <joint name="${side}_elbow" type="revolute">\n'
+        '      <parent link="${side}_upper"/><child link="${side}_lower"/>\n'
+        '      <axis xyz="0 0 0"/>\n'
+        '      <limit lower="-1" upper="1" effort="1" velocity="1"/>\n'
+        "    </joint>\n"
+        "  </xacro:macro>\n"
+        "</robot>\n"
+    )
+    head = '<robot name="{}" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+    include = '  <xacro:include filename="arm.xacro"/>\n  <link name="base"/>\n'
+    (tmp_path / "two.urdf.xacro").write_text(
+        head.format("two") + include + '  <xacro:arm side="l"/>\n  <xacro:arm side="r"/>\n'
+        '  <joint name="jl" type="fixed"><parent link="base"/><child link="l_upper"/></joint>\n'
+        '  <joint name="jr" type="fixed"><parent link="base"/><child link="r_upper"/></joint>\n'
+        "</robot>\n"
+    )
+    (tmp_path / "one.urdf.xacro").write_text(
+        head.format("one") + include + '  <xacro:arm side="m"/>\n'
+        '  <joint name="jm" type="fixed"><parent link="base"/><child link="m_upper"/></joint>\n'
+        "</robot>\n"
+    )
+    analyzer = Analyzer([tmp_path])
+    for entry in ("two.urdf.xacro", "one.urdf.xacro"):
+        analyzer.analyse(str(tmp_path / entry))
+    per_entry = [
+        [f for f in a.findings.get(str(tmp_path / "arm.xacro"), []) if f.code == "J007"]
+        for a in analyzer.analyses.values()
+    ]
+    assert [len(found) for found in per_entry] == [1, 1]  # each entry sees it
+    (j007,) = [f for f in analyzer.findings_for(str(tmp_path / "arm.xacro")) if f.code == "J007"]
+    assert j007.line == 7
+    assert "l_elbow" in j007.message and "r_elbow" in j007.message
+    calls = {(Path(c.path).name, c.line) for c in j007.trace}
+    assert ("two.urdf.xacro", 4) in calls and ("one.urdf.xacro", 4) in calls

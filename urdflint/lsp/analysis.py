@@ -256,22 +256,21 @@ class Analyzer:
         return found[:MAX_ENTRIES]
 
     def findings_for(self, path: str) -> list[Finding]:
-        """A file's diagnostics: the union of every analysis's findings there (a macro file
-        expanded by two entries shows a defect once)."""
+        """A file's diagnostics: the union of every analysis's findings there. A defect in a
+        macro file that several entries expand is shown once: the finding that names the
+        most instances, with the macro calls of every entry as its related locations."""
         path = os.path.abspath(path)
-        seen: set[tuple[int, int, str, str]] = set()
-        out: list[Finding] = []
+        found: dict[tuple[int, int, str], Finding] = {}
         for analysis in list(self.analyses.values()):
             if analysis.library and analysis.entry == path and self.reached(path):
                 continue  # the macro file's own "library" note: its entries speak for it
             if not self.fresh(analysis, path):
                 continue  # from an older text of the file: hidden until redone
             for finding in analysis.findings.get(path, []):
-                key = (finding.line, finding.column, finding.code, finding.message)
-                if key not in seen:
-                    seen.add(key)
-                    out.append(finding)
-        return sorted(out, key=Finding.sort_key)
+                key = (finding.line, finding.column, finding.code)
+                known = found.get(key)
+                found[key] = finding if known is None else _together(known, finding)
+        return sorted(found.values(), key=Finding.sort_key)
 
     def reached(self, path: str) -> bool:
         """Whether another analysis reads ``path`` (an entry that includes it)."""
@@ -301,6 +300,16 @@ class Analyzer:
         ]
         covering.sort(key=lambda a: not self.fresh(a, path))  # from the current text first
         return (covering[0].document, "entry") if covering else None
+
+
+def _together(known: Finding, other: Finding) -> Finding:
+    """One finding for one defect seen by two entries: the message naming more instances,
+    the calls of both (each entry's chain, as related locations)."""
+    import dataclasses
+
+    first = known if len(known.message) >= len(other.message) else other
+    calls = tuple(dict.fromkeys((*known.trace, *other.trace)))
+    return dataclasses.replace(first, trace=calls, severity=max(known.severity, other.severity))
 
 
 def _never() -> bool:
