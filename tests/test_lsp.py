@@ -254,6 +254,28 @@ async def test_outline_is_the_link_and_joint_tree(client: LanguageClient, tmp_pa
     shoulder = (links[0].children or [])[0]
     assert (shoulder.name, shoulder.detail) == ("shoulder", "revolute -> link1")
     assert shoulder.range.start == T.Position(4, 2)
+    # the whole element, end tag included (breadcrumbs inside a joint); the name: its tag
+    assert shoulder.range.end == T.Position(10, 10)  # after </joint>
+    assert shoulder.selection_range.start == shoulder.range.start
+    assert shoulder.selection_range.end.line == 4
+    assert links[0].range.end == T.Position(3, 26)  # <link name="base_link"/>
+    assert robot.range.end.line > links[-1].range.end.line
+
+
+def test_an_element_s_end_skips_comments_and_counts_nested_tags() -> None:
+    from urdflint.lsp.extent import Text
+
+    lines = [
+        '<robot name="r"><link name="a"> <!-- </link> -->',
+        '  <visual><geometry><box size="1 1 1"/></geometry></visual>',
+        '</link><link name="b" a=">"/>',
+        "</robot>",
+    ]
+    text = Text(lines)
+    assert text.end(0, 16) == T.Position(2, 7)
+    assert text.end(2, 7) == T.Position(2, 29)
+    assert text.end(0, 0) == T.Position(3, 8)
+    assert Text(["<robot>", "  <link>"]).end(1, 2) is None  # half typed
 
 
 def test_a_suppression_goes_right_before_an_element_that_does_not_start_its_line() -> None:

@@ -15,6 +15,7 @@ from lsprotocol import types as T
 
 from urdflint.engine import registry
 from urdflint.lsp import convert
+from urdflint.lsp.extent import Text
 from urdflint.model import inertia
 from urdflint.model.finding import Finding
 
@@ -152,9 +153,14 @@ def symbols(doc: Any, path: str, lines: list[str]) -> list[T.DocumentSymbol]:
         return []
     here = [(el, _where(doc, el, path)) for el in _named(doc)]
     placed = {id(el): at for el, at in here if at is not None}
+    source = Text(lines)
     if doc.root is not None and id(doc.root) in placed and doc.origin is None:
-        return [_tree(doc, placed, lines)]
-    return [_symbol(el, at, lines, []) for el, at in here if at is not None and el is not doc.root]
+        return [_tree(doc, placed, lines, source)]
+    return [
+        _symbol(el, at, lines, [], source=source)
+        for el, at in here
+        if at is not None and el is not doc.root
+    ]
 
 
 def _where(doc: Any, el: Any, path: str) -> tuple[int, int] | None:
@@ -175,18 +181,23 @@ def _symbol(
     lines: list[str],
     children: list[T.DocumentSymbol],
     detail: str | None = None,
+    source: Text | None = None,
 ) -> T.DocumentSymbol:
     start = convert.position(lines, *at)
     row = lines[start.line] if start.line < len(lines) else ""
-    whole = T.Range(start, T.Position(start.line, convert.units(row.rstrip())))
+    head = T.Range(start, T.Position(start.line, convert.units(row.rstrip())))
+    end = source.end(start.line, at[1] - 1) if source is not None else None
+    whole = T.Range(start, end) if end is not None else head  # the element, end tag included
     detail = detail or (el.get("type") if el.tag == "joint" else None)
     name = el.get("name") or f"(unnamed {el.tag})"
     return T.DocumentSymbol(
-        name, KINDS.get(str(el.tag), T.SymbolKind.Object), whole, whole, detail, children=children
+        name, KINDS.get(str(el.tag), T.SymbolKind.Object), whole, head, detail, children=children
     )
 
 
-def _tree(doc: Any, placed: dict[int, tuple[int, int]], lines: list[str]) -> T.DocumentSymbol:
+def _tree(
+    doc: Any, placed: dict[int, tuple[int, int]], lines: list[str], source: Text
+) -> T.DocumentSymbol:
     """robot > link > the joints that hang children on it (flat: a 1,000-link chain is 1,000
     siblings, not 1,000 levels)."""
     by_parent: dict[str, list[Any]] = {}
@@ -198,8 +209,8 @@ def _tree(doc: Any, placed: dict[int, tuple[int, int]], lines: list[str]) -> T.D
         if id(link.element) not in placed:
             continue
         kids = [
-            _symbol(j.element, placed[id(j.element)], lines, [], f"{j.type} -> {j.child}")
+            _symbol(j.element, placed[id(j.element)], lines, [], f"{j.type} -> {j.child}", source)
             for j in by_parent.get(name, [])
         ]
-        links.append(_symbol(link.element, placed[id(link.element)], lines, kids))
-    return _symbol(doc.root, placed[id(doc.root)], lines, links)
+        links.append(_symbol(link.element, placed[id(link.element)], lines, kids, source=source))
+    return _symbol(doc.root, placed[id(doc.root)], lines, links, source=source)
