@@ -403,3 +403,51 @@ def test_a_defect_seen_through_two_entries_is_one_diagnostic_with_both_calls(tmp
     assert "l_elbow" in j007.message and "r_elbow" in j007.message
     calls = {(Path(c.path).name, c.line) for c in j007.trace}
     assert ("two.urdf.xacro", 4) in calls and ("one.urdf.xacro", 4) in calls
+
+
+def test_a_macro_file_s_outline_is_its_macros_with_what_each_writes(tmp_path) -> None:
+    """A macro file (through the robot that includes it): its links and joints under the
+    macro that writes them, once each even when the macro is called twice (issue 23, 3)."""
+    pytest.importorskip("xacro")
+    from urdflint.lsp.analysis import Analyzer
+    from urdflint.lsp.describe import symbols
+
+    macro = tmp_path / "arm.xacro"
+    macro.write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="arm" params="side">\n'
+        '    <link name="${side}_upper"/>\n'
+        '    <link name="${side}_lower"/>\n'
+        '    <joint name="${side}_elbow" type="fixed">\n'
+        '      <parent link="${side}_upper"/><child link="${side}_lower"/>\n'
+        "    </joint>\n"
+        "  </xacro:macro>\n"
+        '  <xacro:macro name="tool" params="">\n'
+        '    <link name="tool"/>\n'
+        "  </xacro:macro>\n"
+        "</robot>\n"
+    )
+    robot = tmp_path / "two.urdf.xacro"
+    robot.write_text(
+        '<robot name="two" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="arm.xacro"/>\n  <link name="base"/>\n'
+        '  <xacro:arm side="l"/>\n  <xacro:arm side="r"/>\n  <xacro:tool/>\n'
+        '  <joint name="jl" type="fixed"><parent link="base"/><child link="l_upper"/></joint>\n'
+        '  <joint name="jr" type="fixed"><parent link="base"/><child link="r_upper"/></joint>\n'
+        '  <joint name="jt" type="fixed"><parent link="base"/><child link="tool"/></joint>\n'
+        "</robot>\n"
+    )
+    analyzer = Analyzer([tmp_path])
+    analyzer.analyse(str(robot))
+    covering = analyzer.document_for(str(macro))
+    assert covering is not None
+    lines = macro.read_text().split("\n")
+    outline = symbols(covering[0], str(macro), lines)
+    assert [(s.name, s.detail) for s in outline] == [
+        ("arm", "xacro:macro"),
+        ("tool", "xacro:macro"),
+    ]
+    arm, tool = outline
+    assert [s.name for s in arm.children or []] == ["l_upper", "l_lower", "l_elbow"]
+    assert [s.name for s in tool.children or []] == ["tool"]
+    assert (arm.range.start.line, arm.range.end.line) == (1, 7)

@@ -15,7 +15,7 @@ from lsprotocol import types as T
 
 from urdflint.engine import registry
 from urdflint.lsp import convert
-from urdflint.lsp.extent import Text
+from urdflint.lsp.extent import Text, nested
 from urdflint.model import inertia
 from urdflint.model.finding import Finding
 
@@ -148,7 +148,8 @@ def _mass(element: Any) -> float | None:
 
 def symbols(doc: Any, path: str, lines: list[str]) -> list[T.DocumentSymbol]:
     """The outline: for the robot's own file its kinematic tree (link > joint > link), for
-    a file xacro includes the links and joints written in it."""
+    a file xacro includes the links and joints written in it, under the macros that write
+    them."""
     if doc is None or doc.root is None:
         return []
     here = [(el, _where(doc, el, path)) for el in _named(doc)]
@@ -156,11 +157,11 @@ def symbols(doc: Any, path: str, lines: list[str]) -> list[T.DocumentSymbol]:
     source = Text(lines)
     if doc.root is not None and id(doc.root) in placed and doc.origin is None:
         return [_tree(doc, placed, lines, source)]
-    return [
-        _symbol(el, at, lines, [], source=source)
-        for el, at in here
-        if at is not None and el is not doc.root
-    ]
+    written: dict[tuple[int, int], T.DocumentSymbol] = {}
+    for el, at in here:  # a macro called twice writes its elements twice: shown once (first)
+        if at is not None and el is not doc.root and at not in written:
+            written[at] = _symbol(el, at, lines, [], source=source)
+    return nested(source, list(written.values()))
 
 
 def _where(doc: Any, el: Any, path: str) -> tuple[int, int] | None:

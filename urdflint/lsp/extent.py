@@ -45,3 +45,41 @@ class Text:
                 line = bisect.bisect_right(self.starts, end) - 1
                 return T.Position(line, convert.units(self.text[self.starts[line] : end]))
         return None
+
+
+MACRO_RE = re.compile(
+    r"""<xacro:macro\b(?:[^>"']|"[^"]*"|'[^']*')*?\bname\s*=\s*["']([^"']*)["']"""
+)
+
+
+def nested(source: Text, symbols: list[T.DocumentSymbol]) -> list[T.DocumentSymbol]:
+    """``symbols`` (links and joints written in a xacro file) under the ``<xacro:macro>``
+    that writes each, the macros as symbols of their own (a macro file's outline)."""
+    groups: list[T.DocumentSymbol] = []
+    for match in MACRO_RE.finditer(source.text):
+        line = bisect.bisect_right(source.starts, match.start()) - 1
+        column = match.start() - source.starts[line]
+        end = source.end(line, column)
+        if end is None:
+            continue
+        start = T.Position(line, convert.units(source.lines[line][:column]))
+        head = T.Range(start, T.Position(line, convert.units(source.lines[line])))
+        groups.append(
+            T.DocumentSymbol(
+                match.group(1), T.SymbolKind.Function, T.Range(start, end), head, "xacro:macro",
+                children=[],
+            )
+        )  # fmt: skip
+    top: list[T.DocumentSymbol] = []
+    for symbol in symbols:
+        at = _key(symbol.range.start)
+        inside = [g for g in groups if _key(g.range.start) <= at <= _key(g.range.end)]
+        if inside:  # the innermost macro that holds it
+            inside[-1].children.append(symbol)  # type: ignore[union-attr]
+        else:
+            top.append(symbol)
+    return sorted([*groups, *top], key=lambda s: _key(s.range.start))
+
+
+def _key(position: T.Position) -> tuple[int, int]:
+    return position.line, position.character
