@@ -5,6 +5,7 @@ actions that fix or suppress, hover, the outline."""
 from __future__ import annotations
 
 import asyncio
+import re
 import shutil
 import sys
 from pathlib import Path
@@ -286,8 +287,8 @@ def test_a_suppression_goes_right_before_an_element_that_does_not_start_its_line
     finding = Finding("a.urdf", 1, 33, "J006", "ignored-axis", Severity.INFO, "m", "/robot")
     edit = convert.suppression(lines, "file:///a.urdf", finding)
     (change,) = (edit.changes or {})["file:///a.urdf"]
-    assert change.range.start == T.Position(0, 31)
-    assert change.new_text == "<!-- urdflint: ignore[J006] ignored-axis -->"
+    assert change.range.start == T.Position(0, 31)  # the <axis> moves to a line of its own
+    assert change.new_text == "\n    <!-- urdflint: ignore[J006] ignored-axis -->\n    "
     finding = Finding("a.urdf", 1, 3, "J006", "ignored-axis", Severity.INFO, "m", "/robot")
     (change,) = (convert.suppression(lines, "file:///a.urdf", finding).changes or {})[
         "file:///a.urdf"
@@ -329,33 +330,67 @@ async def test_a_macro_file_included_by_another_macro_file(client: LanguageClien
     assert [c for c in codes(client, uri) if c[0] == "J008"] == [("J008", 12, 6, 25)]
 
 
-def test_suppressing_a_finding_at_an_attribute_comments_its_element() -> None:
-    """Every suppression action on the bundled broken robot (J007, I002, J009, S006 point at
-    an attribute) keeps the file well-formed and silences that finding."""
-    from urdflint.engine import linter
-    from urdflint.engine.config import Settings
+def _suppressed(text: str, finding) -> str:  # type: ignore[no-untyped-def]
     from urdflint.lsp import convert
 
-    path = FIXTURES / "models" / "broken_arm.urdf"
+    lines = convert.lines_of(text)
+    (change,) = (convert.suppression(lines, "file:///x.urdf", finding).changes or {})[
+        "file:///x.urdf"
+    ]
+    start = change.range.start
+    line = lines[start.line]
+    joined = line[: start.character] + change.new_text + line[start.character :]
+    return "\n".join([*lines[: start.line], joined, *lines[start.line + 1 :]])
+
+
+SUPPRESSIBLE = sorted((FIXTURES / "rules").glob("*/bad*.urdf"))
+
+
+@pytest.mark.parametrize("path", SUPPRESSIBLE, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_suppressing_any_finding_keeps_the_file_and_removes_exactly_it(path: Path) -> None:
+    """The suppress action on every finding of an element in every rule fixture: the file
+    still parses, and exactly what such a comment hides is gone: that code on that element
+    and inside it (findings at attributes comment their element; an element that shares its
+    line moves to a line of its own) (issue 23, 1)."""
+    from collections import Counter
+
+    from urdflint.engine import linter
+    from urdflint.engine.config import Settings
+
     text = path.read_text()
-    found = linter.lint_bytes(text.encode(), str(path), Settings(), base_dir=path.parent)
-    at_attribute = 0
-    for finding in found.findings:
-        lines = convert.lines_of(text)
-        if lines[finding.line - 1][finding.column - 1 : finding.column] != "<":
-            at_attribute += 1
-        (change,) = (convert.suppression(lines, "file:///x.urdf", finding).changes or {})[
-            "file:///x.urdf"
-        ]
-        start = change.range.start
-        line = lines[start.line]
-        joined = line[: start.character] + change.new_text + line[start.character :]
-        edited = "\n".join([*lines[: start.line], joined, *lines[start.line + 1 :]])
-        after = linter.lint_bytes(edited.encode(), str(path), Settings(), base_dir=path.parent)
-        codes = [(f.code, f.element) for f in after.findings]
-        assert ("X001", "/robot") not in codes, finding
-        assert (finding.code, finding.element) not in codes, finding
-    assert at_attribute >= 4
+
+    def findings(data: str) -> Counter[tuple[str, str, str]]:
+        found = linter.lint_bytes(data.encode(), str(path), Settings(), base_dir=path.parent)
+        return Counter(  # messages that cite a line: one more after the comment's line
+            (f.code, f.element, re.sub(r"line \d+", "line N", f.message))
+            for f in found.findings
+            if f.path == str(path)
+        )
+
+    before = linter.lint_bytes(text.encode(), str(path), Settings(), base_dir=path.parent)
+    everything = findings(text)
+    if any(code == "X001" for code, _, _ in everything):
+        return  # a file that does not parse: nothing to anchor a comment to
+    for finding in before.findings:
+        if finding.path != str(path) or finding.element == "/robot":
+            continue  # robot-level findings (the file, its declaration): issue 23 goes on
+        after = findings(_suppressed(text, finding))
+        assert ("X001", "/robot") not in {(c, e) for c, e, _ in after}, finding.code
+        # what a comment before the element hides: the code there and inside it (README)
+        hidden = Counter(
+            {
+                key: n
+                for key, n in everything.items()
+                if key[0] == finding.code
+                and (key[1] == finding.element or key[1].startswith(finding.element + "/"))
+            }
+        )
+        where = (finding.code, finding.line, finding.column)
+        assert after - everything == Counter(), where  # nothing new
+        gone = (finding.code, finding.element, re.sub(r"line \d+", "line N", finding.message))
+        assert after[gone] < everything[gone], where  # that finding is gone
+        for key, n in everything.items():  # the rest stays, but what the comment may hide
+            assert (after[key] <= n) if key in hidden else (after[key] == n), (where, key)
 
 
 def test_a_defect_seen_through_two_entries_is_one_diagnostic_with_both_calls(tmp_path) -> None:

@@ -142,17 +142,19 @@ def _tag_start(lines: list[str], row: int, column: int) -> tuple[int, int]:
 
 
 def suppression(lines: list[str], uri: str, finding: Finding) -> T.WorkspaceEdit:
-    """An ``ignore`` comment right before the finding's element: on its own line above it,
-    indented as it, when the element starts its line; else just before it on the line."""
+    """An ``ignore`` comment on its own line right before the finding's element, indented
+    as it; an element that does not start its line is moved to a line of its own first."""
     row = min(max(finding.line - 1, 0), max(len(lines) - 1, 0))
     text = lines[row] if lines else ""
     column = min(max(finding.column - 1, 0), len(text))
     row, column = _tag_start(lines, row, column)  # a finding at an attribute: its element
     text = lines[row] if lines else ""
     comment = f"<!-- urdflint: ignore[{finding.code}] {finding.name} -->"
+    indent = text[: len(text) - len(text.lstrip())]
     if text[:column].strip():  # something precedes the element on its line
         at = T.Position(row, units(text[:column]))
-        return T.WorkspaceEdit(changes={uri: [T.TextEdit(T.Range(at, at), comment)]})
-    indent = text[: len(text) - len(text.lstrip())]
+        inner = indent + "  "
+        edit = T.TextEdit(T.Range(at, at), f"\n{inner}{comment}\n{inner}")
+        return T.WorkspaceEdit(changes={uri: [edit]})
     at = T.Position(row, 0)
     return T.WorkspaceEdit(changes={uri: [T.TextEdit(T.Range(at, at), f"{indent}{comment}\n")]})
