@@ -275,7 +275,9 @@ class Pool:
             # The request was cancelled: the job finishes in its worker, then the slot frees.
             self._later(self._after(future, worker))
             raise
-        except BaseException:
+        except BaseException as exc:
+            if isinstance(exc, WorkerDied):
+                log.warning("lint worker %d died: %s; starting another", worker.process.pid, exc)
             self._later(self._replace(worker))
             raise
         self._give_back(worker)

@@ -102,7 +102,10 @@ router = APIRouter()
         413: {"description": "the body, the URDF or the zip is over its limit"},
         415: {"description": "not XML or multipart, or not a .urdf/.xacro file"},
         422: {"description": "malformed request, option or archive (see detail)"},
-        503: {"description": "every worker and queue place is taken; retry"},
+        503: {
+            "description": "every worker and queue place is taken, or the worker checking "
+            "this request died; retry (Retry-After)"
+        },
         504: {"description": "the lint job overran the time limit"},
     },
 )
@@ -256,8 +259,8 @@ async def _lint(
             return error(503, f"the server is busy ({exc})", {"Retry-After": "1"})
         except JobTimeout:
             return error(504, f"checking this input took over the {limits.timeout:g} s time limit")
-        except WorkerDied as exc:
-            return error(422, f"{exc}; the input cannot be checked")
+        except WorkerDied as exc:  # not a verdict on the file: the same request may pass
+            return error(503, f"{exc}; retry the request", {"Retry-After": "1"})
     finally:
         await run_in_threadpool(shutil.rmtree, folder, True)
     status, content, media = answer["status"], answer["content"], answer["media_type"]

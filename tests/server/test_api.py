@@ -604,3 +604,41 @@ def test_docs_and_rules_pages_are_served_offline() -> None:
             assert client.get(asset).status_code == 200
         assert "/static/rules.js" in client.get("/rules").text
         assert client.get("/openapi.json").json()["paths"]["/v1/rules/{code}"]
+
+
+def test_a_request_whose_worker_dies_gets_a_retryable_503(
+    folders: Path, monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    """A worker killed from outside while it checks a request: the client gets 503 with
+    Retry-After (no verdict on its file), the death is logged with its reason, and the same
+    request then passes on the replacement worker (issue 23, 7)."""
+    import logging
+    import signal
+    import threading
+
+    from urdflint.server import pool as pool_mod
+
+    limits = Limits(timeout=60, jobs=1, queue=4, tmpdir=str(folders))
+    original = pool_mod.Worker.call
+    killed: list[int] = []
+
+    def dying(self: pool_mod.Worker, job: object, timeout: float) -> object:
+        if not killed and type(job).__name__ == "CheckJob":
+            killed.append(self.process.pid)
+            threading.Timer(0.05, os.kill, (self.process.pid, signal.SIGKILL)).start()
+        return original(self, job, timeout)
+
+    monkeypatch.setattr(pool_mod.Worker, "call", dying)
+    body = robot().encode()
+    headers = {"Content-Type": "application/xml"}
+    with caplog.at_level(logging.WARNING, logger="urdflint.server.pool"):
+        with TestClient(create_app(limits), raise_server_exceptions=False) as client:
+            died = client.post("/v1/check", content=body, headers=headers)
+            again = client.post("/v1/check", content=body, headers=headers)
+    assert killed
+    assert died.status_code == 503, died.text
+    assert died.headers.get("Retry-After") == "1"
+    assert "retry" in died.json()["detail"]
+    assert again.status_code == 200, again.text
+    deaths = [r for r in caplog.records if "died" in r.getMessage()]
+    assert len(deaths) == 1 and "SIGKILL" in deaths[0].getMessage()
