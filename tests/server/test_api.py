@@ -631,10 +631,12 @@ def test_a_request_whose_worker_dies_gets_a_retryable_503(
     monkeypatch.setattr(pool_mod.Worker, "call", dying)
     body = robot().encode()
     headers = {"Content-Type": "application/xml"}
-    with caplog.at_level(logging.WARNING, logger="urdflint.server.pool"):
-        with TestClient(create_app(limits), raise_server_exceptions=False) as client:
-            died = client.post("/v1/check", content=body, headers=headers)
-            again = client.post("/v1/check", content=body, headers=headers)
+    with (
+        caplog.at_level(logging.WARNING, logger="urdflint.server.pool"),
+        TestClient(create_app(limits), raise_server_exceptions=False) as client,
+    ):
+        died = client.post("/v1/check", content=body, headers=headers)
+        again = client.post("/v1/check", content=body, headers=headers)
     assert killed
     assert died.status_code == 503, died.text
     assert died.headers.get("Retry-After") == "1"
