@@ -62,7 +62,9 @@ def fix_file(path: Path, code: str, unsafe: bool) -> int:
 MACHINE_PAIRS = {"C014"}
 
 
-@pytest.mark.parametrize("rule", [r for r in FIXABLE if r.code not in MACHINE_PAIRS], ids=lambda r: r.code)
+@pytest.mark.parametrize(
+    "rule", [r for r in FIXABLE if r.code not in MACHINE_PAIRS], ids=lambda r: r.code
+)
 def test_every_fixable_rule_has_a_fixture_pair(rule: registry.Rule) -> None:
     assert list((FIXTURES / "rules" / rule.code / "fixed").glob("*.urdf")), rule.code
 
