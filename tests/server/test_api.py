@@ -614,7 +614,6 @@ def test_a_request_whose_worker_dies_gets_a_retryable_503(
     request then passes on the replacement worker (issue 23, 7)."""
     import logging
     import signal
-    import threading
 
     from urdflint.server import pool as pool_mod
 
@@ -624,8 +623,9 @@ def test_a_request_whose_worker_dies_gets_a_retryable_503(
 
     def dying(self: pool_mod.Worker, job: object, timeout: float) -> object:
         if not killed and type(job).__name__ == "CheckJob":
-            killed.append(self.process.pid)
-            threading.Timer(0.05, os.kill, (self.process.pid, signal.SIGKILL)).start()
+            killed.append(self.process.pid)  # killed from outside, the request in flight
+            os.kill(self.process.pid, signal.SIGKILL)
+            self.process.join(10)
         return original(self, job, timeout)
 
     monkeypatch.setattr(pool_mod.Worker, "call", dying)
