@@ -79,7 +79,7 @@ from urdflint.engine import registry
 
 from . import options as opts
 from . import page, routes_check, routes_fix, routes_meta
-from .limits import Guard, Limits
+from .limits import Guard, Limits, Load
 from .page import SecurityHeaders
 from .pool import Pool
 from .routing import option_error
@@ -140,7 +140,8 @@ def create_app(limits: Limits | None = None, *, exit_on_failure: bool = False) -
     app.state.limits = limits
     app.state.pool = pool
     app.state.readiness = {}  # the last successful /readyz answer and when (routes_meta)
-    app.add_middleware(Guard, limits=limits)
+    app.state.load = Load()  # lint requests in flight: /readyz says when no place is left
+    app.add_middleware(Guard, limits=limits, load=app.state.load)
     app.add_middleware(SecurityHeaders)
     app.exception_handler(opts.OptionError)(option_error)
     # routes in this order: the OpenAPI document lists them so

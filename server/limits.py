@@ -179,14 +179,21 @@ async def _reply(send: Send, status: int, detail: str, headers: list[tuple[bytes
     await send({"type": "http.response.body", "body": body})
 
 
+class Load:
+    """The lint requests admitted and not yet answered (``/readyz`` reads it)."""
+
+    def __init__(self) -> None:
+        self.active = 0
+
+
 class Guard:
     """Body size limits for every request, and admission control for ``/v1/check`` and
     ``/v1/fix``."""
 
-    def __init__(self, app: ASGIApp, limits: Limits) -> None:
+    def __init__(self, app: ASGIApp, limits: Limits, load: Load | None = None) -> None:
         self.app = app
         self.limits = limits
-        self.active = 0  # lint requests admitted and not yet answered
+        self.load = load if load is not None else Load()
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
@@ -200,7 +207,7 @@ class Guard:
         if length is not None and (not length.strip().isdigit() or int(length) > limit):
             await _reply(send, 413, f"request body over the {_size(limit)} limit", [])
             return
-        if is_check and self.active >= self.limits.jobs + self.limits.queue:
+        if is_check and self.load.active >= self.limits.jobs + self.limits.queue:
             await _reply(
                 send,
                 503,
@@ -222,11 +229,11 @@ class Guard:
         if not is_check:
             await self.app(scope, limited, send)
             return
-        self.active += 1
+        self.load.active += 1
         try:
             await self.app(scope, limited, send)
         finally:
-            self.active -= 1
+            self.load.active -= 1
 
 
 def _size(n: int) -> str:

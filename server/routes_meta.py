@@ -64,6 +64,9 @@ async def readyz(request: Request) -> JSONResponse:
         return _not_ready(request, pool.problem, retry=False)
     if not pool.ready:
         return _not_ready(request, "the lint workers are starting")
+    load = getattr(request.app.state, "load", None)
+    if load is not None and load.active >= limits.jobs + limits.queue:
+        return _not_ready(request, "every lint worker and queue place is taken")
     cached = readiness.get("answer")
     if cached is None or time.monotonic() - readiness.get("at", 0.0) > READY_TTL:
         folder = await run_in_threadpool(tempfile.mkdtemp, "", "urdflint-", limits.tmpdir)

@@ -644,3 +644,25 @@ def test_a_request_whose_worker_dies_gets_a_retryable_503(
     assert again.status_code == 200, again.text
     deaths = [r for r in caplog.records if "died" in r.getMessage()]
     assert len(deaths) == 1 and "SIGKILL" in deaths[0].getMessage()
+
+
+def test_readyz_is_503_while_every_worker_and_queue_place_is_taken(client: TestClient) -> None:
+    """Readiness tells the truth: no capacity left (every worker busy and the queue full, as
+    the admission count says), 503 with the reason; capacity back, 200 (issue 23, 7)."""
+    assert client.get("/readyz").status_code == 200
+    load = client.app.state.load  # type: ignore[attr-defined]
+    limits = client.app.state.limits  # type: ignore[attr-defined]
+    saved = load.active
+    load.active = limits.jobs + limits.queue
+    try:
+        full = client.get("/readyz")
+        assert full.status_code == 503
+        assert full.json()["reason"] == "every lint worker and queue place is taken"
+        assert full.headers.get("Retry-After") == "1"
+        busy = client.post(
+            "/v1/check", content=robot(), headers={"Content-Type": "application/xml"}
+        )
+        assert busy.status_code == 503  # the admission control says the same
+    finally:
+        load.active = saved
+    assert client.get("/readyz").status_code == 200
