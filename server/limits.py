@@ -195,6 +195,15 @@ class Guard:
         self.limits = limits
         self.load = load if load is not None else Load()
 
+    @property
+    def active(self) -> int:
+        """Lint requests admitted and not yet answered (shared with ``/readyz``)."""
+        return self.load.active
+
+    @active.setter
+    def active(self, value: int) -> None:
+        self.load.active = value
+
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
             await self.app(scope, receive, send)
