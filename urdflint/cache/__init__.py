@@ -83,32 +83,23 @@ class Cache:
         if outer is not None:
             outer.inherit(inputs)
         if keep is None or keep(value):
-            token = deps.paused()
-            try:
+            with deps.unrecorded():
                 self.store.put(kind, key, (inputs, value))
-            finally:
-                deps.resume(token)
         self.flush()
         return value
 
     def entry(self, kind: str, parts: tuple[Any, ...]) -> tuple[Any, Any] | None:
         """The stored ``(inputs, value)`` of :meth:`keep`, fresh or not (the caller checks)."""
-        token = deps.paused()
-        try:
+        with deps.unrecorded():
             found = self.store.get(kind, keys.digest(keys.code_version(), kind, parts))
-        finally:
-            deps.resume(token)
         return found if isinstance(found, tuple) and len(found) == 2 else None
 
     def keep(self, kind: str, parts: tuple[Any, ...], inputs: Any, value: Any) -> None:
         """Store ``value`` with the ``inputs`` a :func:`deps.recording` saw compute it, for
         :meth:`replayed` (a caller that computes more than it stores)."""
-        token = deps.paused()
-        try:
+        with deps.unrecorded():
             key = keys.digest(keys.code_version(), kind, parts)
             self.store.put(kind, key, (inputs, value))
-        finally:
-            deps.resume(token)
         self.flush()
 
     def replayed(
@@ -131,16 +122,13 @@ class Cache:
         environ: Mapping[str, str] | None,
     ) -> tuple[bool, Any]:
         outer = deps.current()
-        token = deps.paused()
-        try:
+        with deps.unrecorded():
             entry = self.store.get(kind, key)
             if not (isinstance(entry, tuple) and len(entry) == 2):
                 return False, None
             found, value = entry
             if not deps.unchanged(found, overlay, environ):
                 return False, None
-        finally:
-            deps.resume(token)
         if outer is not None:
             outer.inherit(found)
         return True, value
@@ -148,18 +136,12 @@ class Cache:
     # -- plain values by content --------------------------------------------------------
 
     def get(self, kind: str, *parts: Any) -> Any:
-        token = deps.paused()
-        try:
+        with deps.unrecorded():
             return self.store.get(kind, keys.digest(keys.code_version(), kind, parts))
-        finally:
-            deps.resume(token)
 
     def put(self, kind: str, value: Any, *parts: Any) -> None:
-        token = deps.paused()
-        try:
+        with deps.unrecorded():
             self.store.put(kind, keys.digest(keys.code_version(), kind, parts), value)
-        finally:
-            deps.resume(token)
 
     def key(self, kind: str, *parts: Any) -> str:
         return keys.digest(keys.code_version(), kind, parts)
@@ -170,13 +152,10 @@ class Cache:
         self.pending[(kind, key)] = value
 
     def flush(self) -> None:
-        token = deps.paused()
-        try:
+        with deps.unrecorded():
             while self.pending:
                 (kind, key), value = self.pending.popitem()
                 self.store.put(kind, key, value)
-        finally:
-            deps.resume(token)
 
     def digest(self, path: str, info: os.stat_result | None = None) -> str | None:
         """A file's content digest (read once per process for one size, time and inode)."""
@@ -185,13 +164,11 @@ class Cache:
     def finish(self) -> None:
         """End of a run: write what is pending, keep the folder under its size limit."""
         self.flush()
-        token = deps.paused()
-        try:
-            self.store.collect()
-        except OSError:
-            log.debug("cache collection failed", exc_info=True)
-        finally:
-            deps.resume(token)
+        with deps.unrecorded():
+            try:
+                self.store.collect()
+            except OSError:
+                log.debug("cache collection failed", exc_info=True)
 
 
 def configured(data: Mapping[str, Any], base: Path) -> tuple[Path | None, int | None]:

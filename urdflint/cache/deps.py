@@ -21,6 +21,7 @@ was only touched (a ``git checkout``) still hits.
 
 from __future__ import annotations
 
+import contextlib
 import contextvars
 import hashlib
 import os
@@ -179,13 +180,14 @@ class recording:
         _CURRENT.reset(self._token)
 
 
-def paused() -> contextvars.Token[Recorder | None]:
-    """Stop recording in this thread (what the cache itself reads is not an input)."""
-    return _CURRENT.set(None)
-
-
-def resume(token: contextvars.Token[Recorder | None]) -> None:
-    _CURRENT.reset(token)
+@contextlib.contextmanager
+def unrecorded() -> Iterator[None]:
+    """No recording in this block (what the cache itself reads is not an input)."""
+    token = _CURRENT.set(None)
+    try:
+        yield
+    finally:
+        _CURRENT.reset(token)
 
 
 # -- what the code tells -----------------------------------------------------------------------

@@ -28,7 +28,6 @@ import logging
 import os
 import pickle
 import stat
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -163,6 +162,8 @@ class Store:
         except Exception:  # an unpicklable value is a bug of the caller, not of the run
             log.debug("cannot store a %s entry", kind, exc_info=True)
             return False
+        import tempfile  # only a run that writes pays for it (random, shutil...)
+
         digest = hashlib.blake2b(payload, digest_size=DIGEST).digest()
         data = MAGIC + len(payload).to_bytes(8, "little") + digest + payload
         path = self.path(kind, key)

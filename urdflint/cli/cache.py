@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from urdflint.cli.common import EXIT_ERROR, EXIT_OK, cache_options
+from urdflint.cli.common import EXIT_ERROR, EXIT_OK, cache_options, settings_here
 
 
 def add_parser(sub: Any) -> None:
@@ -25,7 +25,7 @@ def run(args: argparse.Namespace) -> int:
     from urdflint.cache import DEFAULT_MAX_BYTES, default_dir
     from urdflint.cache.store import FORMAT, Store
 
-    settings = _settings(args)
+    settings = settings_here(args)
     folder = args.cache_dir or getattr(settings, "cache_dir", None) or default_dir()
     limit = getattr(settings, "cache_max_size", None) or DEFAULT_MAX_BYTES
     exists = Path(folder).is_dir()
@@ -71,20 +71,6 @@ def run(args: argparse.Namespace) -> int:
     for kind, entry in sorted(kinds.items()):
         print(f"  {kind:<9}{entry['entries']:>7} entries {_size(entry['bytes']):>10}")
     return EXIT_OK if info["usable"] or not exists else EXIT_ERROR
-
-
-def _settings(args: argparse.Namespace) -> Any:
-    from urdflint.engine import config
-
-    if args.isolated:
-        return None
-    try:
-        if args.config:
-            return config.load(args.config)
-        found = config.discover(Path.cwd())
-        return config.load(found) if found else None
-    except config.ConfigError:
-        return None
 
 
 def _size(count: int) -> str:

@@ -21,6 +21,7 @@ __all__ = [
     "model_options",
     "open_cache",
     "run_context",
+    "settings_here",
 ]  # fmt: skip
 
 
@@ -38,6 +39,23 @@ def cache_options(parser: argparse.ArgumentParser) -> None:
         help="the analysis cache folder (default: cache-dir in the configuration, "
         "$URDFLINT_CACHE_DIR, else $XDG_CACHE_HOME/urdflint or ~/.cache/urdflint)",
     )
+
+
+def settings_here(args: argparse.Namespace | None = None) -> Any:
+    """The configuration of the current folder (``--config``, ``--isolated`` honoured), or
+    ``None`` when there is none or it is invalid: what ``cache`` and ``lsp`` read of it is
+    where the cache lives."""
+    from urdflint.engine import config
+
+    if args is not None and getattr(args, "isolated", False):
+        return None
+    try:
+        if args is not None and getattr(args, "config", None):
+            return config.load(args.config)
+        found = config.discover(Path.cwd())
+        return config.load(found) if found else None
+    except config.ConfigError:
+        return None
 
 
 def open_cache(args: argparse.Namespace, settings: Any = None) -> Any:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from urdflint.cli.common import UsageError, cache_options, open_cache
+from urdflint.cli.common import UsageError, cache_options, open_cache, settings_here
 
 
 def add_parser(sub: Any) -> None:
@@ -26,18 +26,4 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError("urdflint lsp needs pygls: pip install 'urdflint[lsp]'") from None
     from urdflint.lsp.server import main
 
-    return main(open_cache(args, _settings()))
-
-
-def _settings() -> Any:
-    """The configuration nearest the folder the editor started the server in (its
-    ``cache-dir`` and ``cache-max-size``)."""
-    from pathlib import Path
-
-    from urdflint.engine import config
-
-    try:
-        found = config.discover(Path.cwd())
-        return config.load(found) if found else None
-    except config.ConfigError:
-        return None
+    return main(open_cache(args, settings_here()))

@@ -118,11 +118,8 @@ class Packages(Mapping[str, Path]):
         if self._found is None:
             cache = self.cache
             if cache is not None and getattr(cache, "usable", False):
-                token = deps.paused()  # the index's own inputs are kept with the index
-                try:
+                with deps.unrecorded():  # the index's own inputs are kept with the index
                     listed = cache.result("packages", (self.key,), self._discover)  # type: ignore[attr-defined]
-                finally:
-                    deps.resume(token)
             else:
                 listed = self._discover()
             self._found = {name: Path(folder) for name, folder in listed}

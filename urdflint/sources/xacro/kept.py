@@ -83,11 +83,8 @@ def _stored(
 ) -> Document | None:
     """The stored document, when nothing it read changed."""
     inputs, value = entry
-    token = deps.paused()
-    try:
+    with deps.unrecorded():
         fresh = deps.unchanged(inputs, context.overlay, context.environ)
-    finally:
-        deps.resume(token)
     if not fresh:
         return None
     if outer is not None:
@@ -99,8 +96,7 @@ def _patched(
     inputs: tuple[Any, ...], value: Any, shown: str, common: dict[str, Any], context: Context
 ) -> Document | None:
     """The stored document patched for the one file that changed, if it can be."""
-    token = deps.paused()
-    try:
+    with deps.unrecorded():
         changed = deps.changes(inputs, context.overlay, context.environ, limit=2)
         if len(changed) != 1 or changed[0].kind not in ("file", "content"):
             return None
@@ -113,8 +109,6 @@ def _patched(
             new = new if new is not None else Path(name).read_bytes()
         except OSError:
             return None
-    finally:
-        deps.resume(token)
     from urdflint.sources.xacro import patch
 
     previous = _rebuilt(value, shown, common)
