@@ -28,9 +28,10 @@ the link without that visual or collision; a lost collision lets the link
 pass through the world.
 
 ## How to fix
-Convert the mesh to a format every target reads: STL or OBJ for geometry
-(MuJoCo and both Gazebos), Collada or OBJ with a `.mtl` where colours matter
-in Gazebo. For MuJoCo, keep a converted copy of Collada visuals as OBJ
+Convert the mesh to a format every selected target reads; the finding's fix names
+them: OBJ reads everywhere (Drake's collision geometry needs OBJ, VTK or glTF), STL
+in MuJoCo and both Gazebos, Collada or OBJ with a `.mtl` where colours matter in
+Gazebo. For MuJoCo, keep a converted copy of Collada visuals as OBJ
 (for example with `trimesh` or Blender).
 """
 
@@ -75,7 +76,7 @@ REFUSING = frozenset({"mujoco", "drake"})
     "C009",
     "unsupported-mesh-format",
     Severity.WARNING,
-    fix="Convert the mesh to STL or OBJ, which every target reads.",
+    fix="Convert the mesh to a format every selected target reads (the finding names them).",
     effects={"": EFFECTS},
 )
 def check(doc: Document) -> Iterator[Hit]:
@@ -91,6 +92,7 @@ def check(doc: Document) -> Iterator[Hit]:
         if not failing:
             continue
         severity = Severity.ERROR if REFUSING & set(failing) else Severity.WARNING
+        fix = convert_to([t for t in targets if _counts(t, ref.tag, visuals)])
         what = f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}"
         if not ext or ext not in KNOWN_FORMATS:
             kind = "has no extension" if not ext else f"has the unknown extension '.{ext}'"
@@ -100,6 +102,7 @@ def check(doc: Document) -> Iterator[Hit]:
                 f"{what} {kind}, which {labels} cannot load",
                 severity=severity,
                 effects=effects(failing),
+                fix=fix,
             )
             continue
         labels = " and ".join(LABELS[t] for t in failing)
@@ -109,7 +112,27 @@ def check(doc: Document) -> Iterator[Hit]:
             f"{labels} cannot load {format_name(ext)} {what} ({reads})",
             severity=severity,
             effects=effects(failing),
+            fix=fix,
         )
+
+
+PREFERRED = ("obj", "stl", "dae", "gltf")  # what to convert to, the most widely read first
+
+
+def convert_to(readers: list[str]) -> str:
+    """The fix: the formats every selected target that reads this mesh can load.
+
+    Never a format one of them refuses (Drake reads no STL collision mesh, MuJoCo no
+    Collada), so the advice cannot contradict the message.
+    """
+    common = [ext for ext in PREFERRED if all(ext in TARGET_FORMATS[t] for t in readers)]
+    labels = " and ".join(LABELS[t] for t in readers)
+    if not common:
+        return f"No one format is read by {labels}: keep a converted copy of the mesh per target."
+    found = [format_name(ext) for ext in common]
+    names = found[0] if len(found) == 1 else f"{', '.join(found[:-1])} or {found[-1]}"
+    every = "both read" if len(readers) == 2 else "all read" if len(readers) > 2 else "reads"
+    return f"Convert the mesh to {names}, which {labels} {every} (for example with trimesh)."
 
 
 def effects(failing: list[str]) -> dict[str, Effect]:

@@ -78,7 +78,7 @@ def hover(doc: Any, findings: list[Finding], element: Any, tag: str) -> str | No
     """Markdown: the rules of the findings on the tag, then the link's or robot's numbers."""
     parts = [_rule_text(f) for f in findings]
     if element is not None and tag == "link":
-        parts.append(_link_text(element))
+        parts.append(_link_text(doc, element, findings))
     elif element is not None and tag == "robot":
         parts.append(_robot_text(doc))
     text = "\n\n---\n\n".join(p for p in parts if p)
@@ -103,11 +103,14 @@ def _fmt(value: float) -> str:
     return f"{value:.6g}"
 
 
-def _link_text(element: Any) -> str:
+def _link_text(doc: Any, element: Any, findings: list[Finding]) -> str:
     name = element.get("name")
     found = inertia.read_inertial(element)
     if found is None:
-        return f"**link `{name}`**: no `<inertial>` (Gazebo drops the link, others give it 0 kg)"
+        said = [f.code for f in findings if f.code in MASSLESS_RULES]
+        if said:  # the rule's text above says what the targets do with it
+            return f"**link `{name}`**: no `<inertial>` ({', '.join(said)} above)"
+        return f"**link `{name}`**: no `<inertial>`; {_massless(doc, name)}"
     lines = [f"**link `{name}`**"]
     if found.mass is not None:
         lines.append(f"mass {_fmt(found.mass)} kg")
@@ -122,6 +125,32 @@ def _link_text(element: Any) -> str:
         moments = inertia.principal_moments(found.tensor)
         lines.append("principal moments " + " ".join(_fmt(m) for m in moments) + " kg·m²")
     return "  \n".join(lines)
+
+
+MASSLESS_RULES = ("I001", "I013")  # the rules that judge a link without mass
+
+
+def _massless(doc: Any, name: str | None) -> str:
+    """What the selected targets do with a link that has no ``<inertial>`` and no I001 or
+    I013 finding on it (ignored, or nothing lost): the verdict those rules work from."""
+    from urdflint.model import bodies
+
+    if doc is None or name is None or name not in doc.link_map:
+        return "it has no mass"
+    if name == "world" and name == doc.graph.root:
+        return "the world frame (sdformat, MuJoCo and Drake weld the links fixed to it in place)"
+    if name == doc.graph.root:
+        if not any(link.inertial is not None or link.visuals for link in doc.links):
+            return "a tree of frames, with nothing to simulate"
+        b = bodies.bodies(doc)
+        if bodies.selected(doc) & bodies.LUMPING and not b.mass(name):
+            label = bodies.gazebo_label(doc.targets)
+            return f"nothing welded to it has mass either, so {label} drops the whole model"
+        return "a massless root link, as KDL wants it (the links fixed to it carry the mass)"
+    verdict = bodies.massless_verdict(doc, name, declared=False)
+    if verdict is None:
+        return "nothing is lost in the selected targets (a frame merged into its parent)"
+    return verdict.consequence
 
 
 def _robot_text(doc: Any) -> str:
