@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import io
 import json
+import os
+import signal
 import subprocess
 import sys
 import threading
@@ -19,7 +21,8 @@ import pytest
 from tests.conftest import CORPUS, FIXTURES, needs_corpus
 from tests.server import attacks
 from tests.server.attacks import MESHES, make_zip, robot
-from tests.server.conftest import running_server
+from tests.server.conftest import _wait as wait_until
+from tests.server.conftest import free_port, running_server, start_server, stop_server
 
 httpx = pytest.importorskip("httpx")
 
@@ -272,3 +275,111 @@ def test_zip_caps_over_http(slow_server: tuple[str, Path]) -> None:
         else:
             assert r.status_code == 200, r.text
     assert list(folders.iterdir()) == []
+
+
+# -- a bounded load loop: readiness under saturation, a worker killed mid-request -----------
+
+
+def _lint_workers(server_pid: int) -> list[int]:
+    """The server's lint workers: its descendants that lead their own process group
+    (``worker.main`` makes each worker a group leader; the fork server and the resource
+    tracker are not)."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                stat = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            children.setdefault(int(stat[1]), []).append(int(entry.name))
+    found, todo = [], list(children.get(server_pid, []))
+    while todo:
+        pid = todo.pop()
+        todo.extend(children.get(pid, []))
+        try:
+            if os.getpgid(pid) == pid:
+                found.append(pid)
+        except OSError:
+            continue
+    return found
+
+
+@needs_corpus
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="finds the lint workers in /proc")
+def test_a_bounded_load_loop_saturates_readiness_and_survives_a_killed_worker(
+    tmp_path: Path,
+) -> None:
+    """Six clients post PR2 (a new body each time: no cached answer) to a server with one
+    worker and one queue place, a bounded number of times. While every place is taken,
+    /readyz says 503 with the reason; one worker is SIGKILLed while it checks a request.
+    Every answer is 200, or 503 with Retry-After (never a verdict such as 422 on a killed
+    check); the death is logged once, with its signal; nothing refused is logged (the
+    model reads only its own files); capacity back, /readyz is 200 (issue 23, 7)."""
+    urdf = (CORPUS / "pr2" / "model.urdf").read_bytes()
+    log = tmp_path / "serve.log"
+    env = {"URDFLINT_JOBS": "1", "URDFLINT_QUEUE": "1", "URDFLINT_TMPDIR": str(tmp_path)}
+    answers: list[tuple[int, str | None, str]] = []
+    lock = threading.Lock()
+    stop = threading.Event()
+
+    def client(number: int) -> None:
+        with httpx.Client(timeout=120) as http:
+            for attempt in range(8):  # bounded: 8 requests per client
+                if stop.is_set():
+                    return
+                body = urdf + f"<!-- client {number} request {attempt} -->\n".encode()
+                r = http.post(
+                    f"{base}/v1/check", content=body, headers={"content-type": "application/xml"}
+                )
+                detail = r.json().get("detail", "") if r.status_code != 200 else ""
+                with lock:
+                    answers.append((r.status_code, r.headers.get("retry-after"), detail))
+                if r.status_code == 503:
+                    time.sleep(0.05)
+
+    port = free_port()
+    base = f"http://127.0.0.1:{port}"
+    server = start_server(port, env, log)
+    try:
+        wait_until(server, base, "/readyz", log)
+        server_pid = server.pid
+        threads = [threading.Thread(target=client, args=(n,)) for n in range(6)]
+        for thread in threads:
+            thread.start()
+        saturated, killed = None, None
+        deadline = time.monotonic() + 120
+        while any(t.is_alive() for t in threads) and time.monotonic() < deadline:
+            ready = httpx.get(f"{base}/readyz", timeout=10)
+            if ready.status_code == 503 and saturated is None:
+                saturated = ready.json().get("reason"), ready.headers.get("retry-after")
+            if saturated is not None and killed is None:
+                workers = _lint_workers(server_pid)
+                if workers:
+                    killed = workers[0]
+                    os.kill(killed, signal.SIGKILL)
+            time.sleep(0.05)
+        stop.set()
+        for thread in threads:
+            thread.join(60)
+        for _ in range(200):  # the replacement starts; capacity returns
+            if httpx.get(f"{base}/readyz", timeout=10).status_code == 200:
+                break
+            time.sleep(0.1)
+        assert httpx.get(f"{base}/readyz", timeout=10).status_code == 200
+        last = httpx.post(
+            f"{base}/v1/check", content=urdf, headers={"content-type": "application/xml"},
+            timeout=120,
+        )  # fmt: skip
+    finally:
+        stop_server(server)
+    text = log.read_text(errors="replace")
+    assert saturated == ("every lint worker and queue place is taken", "1"), saturated
+    assert killed is not None
+    assert {status for status, _, _ in answers} <= {200, 503}, answers
+    assert all(retry for status, retry, _ in answers if status == 503), answers
+    assert sum("(SIGKILL)" in detail for _, _, detail in answers) == 1, answers
+    assert sum(status == 200 for status, _, _ in answers) >= 6, answers
+    assert last.status_code == 200
+    deaths = [line for line in text.splitlines() if "died" in line]
+    assert len(deaths) == 1 and "SIGKILL" in deaths[0], text[-3000:]
+    assert "refused" not in text, text[-3000:]

@@ -29,9 +29,9 @@ def case_variant(path: Path, cache: dict[Path, frozenset[str] | None] | None = N
     ``None`` when the names match exactly, or no single such file exists. ``cache`` holds
     folder listings for one run of the rule (folders change between runs)."""
     cache = {} if cache is None else cache
-    current = Path(path.anchor)
+    current, rest = _deepest_existing(path)
     changed = False
-    for part in path.parts[1:]:
+    for part in rest:
         names = _names(current, cache)
         if names is None:
             return None
@@ -42,3 +42,19 @@ def case_variant(path: Path, cache: dict[Path, frozenset[str] | None] | None = N
             part, changed = matches[0], True
         current = current / part
     return current if changed and current.is_file() else None
+
+
+def _deepest_existing(path: Path) -> tuple[Path, tuple[str, ...]]:
+    """The deepest folder above ``path`` that exists as written, and the parts below it.
+
+    Letter case is searched only below it: a folder that exists as written is the one a
+    case-insensitive file system opens too. Nothing above it is listed (the service's
+    fence refuses listings outside the upload, and a machine's folders are no business
+    of the model's).
+    """
+    parts = path.parts
+    for depth in range(len(parts) - 1, 0, -1):
+        folder = Path(*parts[:depth])
+        if folder.is_dir():
+            return folder, parts[depth:]
+    return Path(path.anchor), parts[1:]
