@@ -6,6 +6,7 @@
                                             [--robots pr2,tiago,ur5,husky,eve_r3,valkyrie]
                                             [--cold] [--cache-dir DIR] [--verify 24]
                                             [--seed N] [--json] [--url http://127.0.0.1:PORT]
+                                            [--kill-every S]
 
 Without --url it starts `python -m urdflint serve` on a free loopback port with
 URDFLINT_JOBS=--jobs lint workers (stopped at the end), URDFLINT_CACHE_DIR=DIR/cache,
@@ -28,6 +29,10 @@ Phases, in one run against one server:
   2. per mode: one client, --solo sequential requests (no queueing), then --clients
      clients with one keep-alive connection each until --duration has passed or
      --max-requests were sent (requests in flight are awaited; the time counts).
+With --kill-every S, one lint worker (chosen at random) is SIGKILLed every S seconds during
+the many-client phases, and the clients resend a 503 after its Retry-After (at most 1 s),
+as a well-behaved client would; latencies count from the first send, and the report says
+how many workers were killed and how many requests were answered 503 first.
 Prints per phase requests/s, p50/p95/max latency and errors (any non-200 or failed request),
 p50 per robot, the CPU seconds used by the server's front process (HTTP, multipart, zip
 saving), by its lint workers, by this client and by the rest of the machine (with --url:
@@ -51,6 +56,7 @@ import os
 import random
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -248,6 +254,7 @@ class Record:
     status: str
     latency: float | None
     found: tuple[tuple[str, int, str], ...] | None
+    retries: int = 0  # 503s answered before this one (--kill-every: a worker died under it)
 
 
 @dataclass
@@ -258,6 +265,7 @@ class Phase:
     records: list[Record] = field(default_factory=list)
     wall: float = 0.0
     cpu: dict[str, float] = field(default_factory=dict)  # CPU seconds used in the phase
+    killed: list[int] = field(default_factory=list)  # lint workers SIGKILLed (--kill-every)
     lock: threading.Lock = field(default_factory=threading.Lock)
 
     def add(self, record: Record) -> None:
@@ -294,6 +302,8 @@ class Phase:
             "max_s": round(latencies[-1], 2) if latencies else None,
             "errors": self.errors,
             "statuses": self.statuses,
+            "retried_503": sum(r.retries for r in self.records),
+            "workers_killed": len(self.killed),
             "p50_s_by_robot": per_robot,
             "cpu_s": {key: round(value, 1) for key, value in self.cpu.items()},
         }
@@ -309,7 +319,10 @@ def client(
     budget: threading.Semaphore,
     phase: Phase,
     timeout: float,
+    retry: bool = False,
 ) -> None:
+    """One client's requests; with ``retry``, a 503 is sent again after its Retry-After (at
+    most 1 s), as a well-behaved client does, and the latency counts from the first send."""
     conn = http.client.HTTPConnection(host, port, timeout=timeout)
     try:
         while time.monotonic() < stop_at and budget.acquire(blocking=False):
@@ -320,22 +333,29 @@ def client(
                 "Content-Type": f"multipart/form-data; boundary={robot.boundary}",
                 "Accept": "application/json",
             }
-            start = time.perf_counter()
-            try:
-                conn.request("POST", CHECK, body=body, headers=headers)
-                response = conn.getresponse()
-                answer = response.read()
-            except (OSError, http.client.HTTPException) as exc:
-                phase.add(Record(index, edit, type(exc).__name__, None, None))
-                conn.close()
-                conn = http.client.HTTPConnection(host, port, timeout=timeout)
-                continue
-            elapsed = time.perf_counter() - start
-            found = signature(answer) if response.status == 200 else None
-            phase.add(Record(index, edit, str(response.status), elapsed, found))
-            if response.getheader("connection", "").lower() == "close":
-                conn.close()
-                conn = http.client.HTTPConnection(host, port, timeout=timeout)
+            start, retries = time.perf_counter(), 0
+            while True:
+                try:
+                    conn.request("POST", CHECK, body=body, headers=headers)
+                    response = conn.getresponse()
+                    answer = response.read()
+                except (OSError, http.client.HTTPException) as exc:
+                    phase.add(Record(index, edit, type(exc).__name__, None, None, retries))
+                    conn.close()
+                    conn = http.client.HTTPConnection(host, port, timeout=timeout)
+                    break
+                if response.getheader("connection", "").lower() == "close":
+                    conn.close()
+                    conn = http.client.HTTPConnection(host, port, timeout=timeout)
+                wait = response.getheader("retry-after")
+                if retry and response.status == 503 and wait and retries < 20:
+                    retries += 1
+                    time.sleep(min(float(wait), 1.0))
+                    continue
+                elapsed = time.perf_counter() - start
+                found = signature(answer) if response.status == 200 else None
+                phase.add(Record(index, edit, str(response.status), elapsed, found, retries))
+                break
     finally:
         conn.close()
 
@@ -352,20 +372,30 @@ def drive(
     cap: int,
     timeout: float,
     server_pid: int | None,
+    kill_every: float = 0.0,
 ) -> Phase:
     name = "first pass" if mode == "first" else f"{mode}, {clients} client{'s' * (clients > 1)}"
     phase = Phase(name, mode, clients)
     budget = threading.Semaphore(cap)
     stop_at = time.monotonic() + seconds
-    args = (host, port, robots, requests, edited, stop_at, budget, phase, timeout)
+    killing = bool(kill_every and server_pid and clients > 1)
+    args = (host, port, robots, requests, edited, stop_at, budget, phase, timeout, killing)
     threads = [threading.Thread(target=client, args=args) for _ in range(clients)]
+    done = threading.Event()
+    if killing:
+        assert server_pid is not None
+        killer = threading.Thread(target=kill_workers, args=(server_pid, kill_every, done, phase))
+        threads.append(killer)
     before, mine, busy = cpu_seconds(server_pid), os.times(), machine_busy_seconds()
     start = time.perf_counter()
     for thread in threads:
         thread.start()
-    for thread in threads:
+    for thread in threads[:clients]:
         thread.join()
     phase.wall = time.perf_counter() - start
+    done.set()
+    for thread in threads[clients:]:
+        thread.join()
     after, now, busy = cpu_seconds(server_pid), os.times(), machine_busy_seconds() - busy
     if server_pid is not None:
         used = {p: t - before.get(p, 0.0) for p, t in after.items()}  # new workers: all
@@ -377,6 +407,30 @@ def drive(
     phase.cpu["others"] = busy - sum(phase.cpu.values())  # the rest of the machine
     print(f"  {name}: {len(phase.records)} requests in {phase.wall:.1f} s", file=sys.stderr)
     return phase
+
+
+def lint_workers(server_pid: int) -> list[int]:
+    """The server's lint workers: descendants leading their own process group (each worker
+    does; the fork server and the resource tracker do not)."""
+    found = []
+    for pid in descendants(server_pid)[1:]:
+        with contextlib.suppress(OSError):
+            if os.getpgid(pid) == pid:
+                found.append(pid)
+    return found
+
+
+def kill_workers(server_pid: int, every: float, done: threading.Event, phase: Phase) -> None:
+    """SIGKILL one lint worker every ``every`` seconds until the phase is done (the busiest
+    moment: workers are checking requests), as an OOM killer or an operator would."""
+    rng = random.Random(server_pid)
+    while not done.wait(every):
+        workers = lint_workers(server_pid)
+        if workers:
+            victim = rng.choice(workers)
+            with contextlib.suppress(OSError):
+                os.kill(victim, signal.SIGKILL)
+                phase.killed.append(victim)
 
 
 # -- the in-process check ----------------------------------------------------------------
@@ -477,6 +531,13 @@ def main() -> int:
     parser.add_argument("--pid", type=int, help="with --url: the server's pid (memory)")
     parser.add_argument("--require-targets", action="store_true", help="exit 1 if one is missed")
     parser.add_argument("--json", action="store_true", help="print the figures as JSON too")
+    parser.add_argument(
+        "--kill-every",
+        type=float,
+        default=0.0,
+        help="SIGKILL one lint worker every S seconds during the many-client phases; clients "
+        "then resend a 503 after its Retry-After (default 0: never)",
+    )
     args = parser.parse_args()
     if args.url and args.cold:
         sys.exit("bench_service: --cold needs the server started here (not --url)")
@@ -553,6 +614,7 @@ def main() -> int:
                     args.max_requests,
                     args.timeout,
                     pid,
+                    args.kill_every,
                 )
             )
         if sampler:
@@ -642,6 +704,11 @@ def main() -> int:
             )
         if f["errors"]:
             print(f"  statuses: {f['statuses']}")
+        if f["workers_killed"]:
+            print(
+                f"  {f['workers_killed']} lint workers SIGKILLed; {f['retried_503']} requests "
+                "answered 503 and were sent again"
+            )
     print(
         f"findings    {checked} responses compared with an in-process lint of the same bytes: "
         + ("all equal" if not differences else f"{len(differences)} DIFFER")
