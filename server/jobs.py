@@ -19,7 +19,7 @@ import contextlib
 import logging
 import os
 import traceback
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -130,16 +130,20 @@ def _checked(job: CheckJob, root: Path, target: Path, context: Context) -> dict[
             job.name,
             job.unsafe_fixes,
         )
+
+    def relint(wider: Settings) -> list[Any]:  # the matrix's rows for the other targets
+        return _lint_file(job, root, target, context, wider).findings
+
     if not job.settings.confirm:
         if result is None:
             result = _lint_file(job, root, target, context, job.settings)
-        answer = _answer(job, result, Scrub(root, Path(job.folder)))
+        answer = _answer(job, result, Scrub(root, Path(job.folder)), relint)
     else:
         from .confirming import confined
 
         with confined(root, job.timeout) as engines:
             result = _lint_file(job, root, target, context, job.settings)
-            answer = _answer(job, result, Scrub(root, Path(job.folder), engines.shown))
+            answer = _answer(job, result, Scrub(root, Path(job.folder), engines.shown), relint)
     if job.fix:
         fixing.answer(answer, job.name, original, applied, target.read_bytes())
     return answer
@@ -159,7 +163,9 @@ def _lint_file(
         fixes.forget_files()
 
 
-def _answer(job: CheckJob, result: Result, scrub: Scrub) -> dict[str, Any]:
+def _answer(
+    job: CheckJob, result: Result, scrub: Scrub, relint: Callable[[Settings], list[Any]]
+) -> dict[str, Any]:
     """The linted upload's answer in the job's format."""
     from urdflint import __version__
     from urdflint.engine import matrix
@@ -179,7 +185,11 @@ def _answer(job: CheckJob, result: Result, scrub: Scrub) -> dict[str, Any]:
     rows: list[dict[str, Any]] = []
     doc = result.document
     if job.matrix and doc is not None and doc.root is not None:
-        found = matrix.rows(scrubbed, settings.targets, settings.confirm)
+
+        def wider(more: Settings) -> list[Finding]:
+            return [scrub.finding(f) for f in relint(more)]
+
+        found = matrix.every_target(scrubbed, settings, wider)
         rows = [scrub.value({"path": job.name, **row}) for row in found]
     models = {job.name: model_summary(result)} if job.fmt == "json" else {}
     run_info = formatters.RunInfo(__version__, (job.name,), models, matrix=tuple(rows))

@@ -58,7 +58,6 @@ Unknown form fields are refused (422), so a misspelt option never goes unnoticed
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import importlib.util
 import json
 from collections.abc import Iterable, Mapping
@@ -265,7 +264,5 @@ def parse(
     settings = finder._apply(base)
     if settings.confirm and not allow_confirm:
         raise OptionError(NO_CONFIRM)
-    if matrix and not target and settings.targets == targets.DEFAULT_TARGETS:
-        settings = dataclasses.replace(settings, targets=tuple(targets.TARGETS))  # every row
     scene = _flag(values, "scene")
     return Options(settings, fmt, svg, _last(values, "filename"), matrix, fix, unsafe, scene)

@@ -103,17 +103,39 @@ def test_cli_matrix_json_has_one_row_per_target(capsys) -> None:
     assert drake["predicted"]["outcome"] == "crashes"
 
 
-def test_cli_matrix_respects_chosen_targets(capsys) -> None:
+def test_cli_matrix_shows_every_target_and_marks_the_chosen_ones(capsys) -> None:
     data = run_json(capsys, "--matrix", "--target", "mujoco", str(ENGINES / "inverted_limits.urdf"))
-    assert [(r["target"], r["predicted"]["outcome"]) for r in data["matrix"]] == [
-        ("mujoco", "changes")
-    ]
+    assert [r["target"] for r in data["matrix"]] == list(targets.ordered(tuple(targets.TARGETS)))
+    assert [r["target"] for r in data["matrix"] if r["selected"]] == ["mujoco"]
+    (mujoco,) = [r for r in data["matrix"] if r["target"] == "mujoco"]
+    assert mujoco["predicted"]["outcome"] == "changes"
+    (drake,) = [r for r in data["matrix"] if r["target"] == "drake"]
+    assert drake["predicted"]["outcome"] == "crashes"  # a row for comparison only:
+    assert {f["code"] for f in drake["predicted"]["findings"]} == {"J009"}
+    assert not [f for f in data["findings"] if "Drake" in f["message"]]  # not reported
+
+
+@pytest.mark.parametrize(
+    "model", [BROKEN, GOOD, ENGINES / "inverted_limits.urdf"], ids=lambda p: p.name
+)
+@pytest.mark.parametrize("chosen", [[], ["--target", "mujoco"], ["--target", "all"]])
+def test_display_options_never_change_findings_or_exit_code(capsys, model, chosen) -> None:
+    """One file, one verdict: --matrix and --show-info only show more (issue 24, 8)."""
+
+    def run(*extra: str) -> tuple[list, int]:
+        code = main(["check", "--format", "json", *chosen, *extra, str(model)])
+        return json.loads(capsys.readouterr().out)["findings"], code
+
+    plain = run()
+    assert run("--matrix") == plain
+    assert run("--show-info") == plain
+    assert run("--matrix", "--show-info") == plain
 
 
 def test_cli_targets_comma_separated_or_repeated(capsys) -> None:
     path = str(ENGINES / "inverted_limits.urdf")
     data = run_json(capsys, "--matrix", "--target", "mujoco, drake", "--target", "ros", path)
-    assert [r["target"] for r in data["matrix"]] == ["mujoco", "drake", "ros"]
+    assert [r["target"] for r in data["matrix"] if r["selected"]] == ["mujoco", "drake", "ros"]
     with pytest.raises(SystemExit) as exit_:
         main(["check", "--target", "mujoco,gazebo", path])
     assert exit_.value.code == 2

@@ -114,12 +114,19 @@ def test_matrix_has_a_row_per_target_as_the_cli(client: TestClient, tmp_path: Pa
 
 
 def test_matrix_follows_the_target_option(client: TestClient) -> None:
-    one = check(client, matrix="true", target="mujoco").json()["matrix"]
-    assert [row["target"] for row in one] == ["mujoco"]
+    """Every target has a row; the option marks the selected ones (the matrix is a display:
+    it never changes which targets the findings are for, issue 24, 8)."""
+
+    def selected(rows: list[dict]) -> list[str]:
+        assert [row["target"] for row in rows] == list(targets.TARGETS)
+        return [row["target"] for row in rows if row["selected"]]
+
+    assert selected(check(client, matrix="true", target="mujoco").json()["matrix"]) == ["mujoco"]
     both = check(client, matrix="1", target="pinocchio,drake").json()["matrix"]
-    assert [row["target"] for row in both] == ["drake", "pinocchio"]
+    assert selected(both) == ["drake", "pinocchio"]
     every = check(client, matrix="true", target="all").json()["matrix"]
-    assert [row["target"] for row in every] == list(targets.TARGETS)
+    assert selected(every) == list(targets.TARGETS)
+    assert check(client, matrix="true").json()["findings"] == check(client).json()["findings"]
     assert "matrix" not in check(client).json()
     assert "matrix" not in check(client, matrix="false").json()
     bad = check(client, matrix="maybe")
@@ -133,7 +140,7 @@ def test_matrix_as_form_fields_and_in_text(client: TestClient) -> None:
         data={"matrix": "true", "target": "ros"},
     )
     assert r.status_code == 200, r.text
-    assert [row["target"] for row in r.json()["matrix"]] == ["ros"]
+    assert [row["target"] for row in r.json()["matrix"] if row["selected"]] == ["ros"]
     text = check(client, matrix="true", format="text")
     assert text.status_code == 200 and "S004" in text.text
 
@@ -253,7 +260,7 @@ def test_serve_allow_confirm_reaches_the_app(monkeypatch: pytest.MonkeyPatch) ->
 
 def test_option_parsing_units() -> None:
     parsed = options.parse(options.merge([("matrix", "true")]))
-    assert parsed.matrix and parsed.settings.targets == tuple(targets.TARGETS)
+    assert parsed.matrix and parsed.settings.targets == targets.DEFAULT_TARGETS  # a display
     assert options.parse(options.merge([])).settings.targets == targets.DEFAULT_TARGETS
     kept = options.parse(options.merge([("matrix", "on"), ("target", "drake")]))
     assert kept.settings.targets == ("drake",)

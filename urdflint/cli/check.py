@@ -23,7 +23,6 @@ from urdflint.cli.common import (
 )
 from urdflint.engine import config, instances
 from urdflint.engine.options import SettingsFinder
-from urdflint.model import targets
 from urdflint.model.finding import Finding
 from urdflint.outputs import formatters, report
 from urdflint.sources.discovery import SKIP_DIRS, as_entries, collect
@@ -131,8 +130,6 @@ def _task(args: argparse.Namespace, name: str, finder: SettingsFinder) -> Any:
         settings = finder.for_folder(Path.cwd() if is_stdin else Path(name).parent)
     except config.ConfigError as exc:
         raise UsageError(str(exc)) from None
-    if args.matrix and not args.target and settings.targets == targets.DEFAULT_TARGETS:
-        settings = replace(settings, targets=tuple(targets.TARGETS))  # every row
     if not is_stdin:
         return parallel.Task(name, name, settings)
     return parallel.Task(name, args.stdin_filename, settings, sys.stdin.buffer.read())

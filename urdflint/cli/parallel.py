@@ -128,7 +128,13 @@ def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
     doc = result.document
     rows: list[dict[str, Any]] = []
     if flags.matrix and doc is not None and doc.root is not None:
-        found = matrix.rows(result.findings, task.settings.targets, task.settings.confirm)
+
+        def relint(wider: Any) -> list[Any]:
+            if task.data is not None:
+                return linter.lint_bytes(task.data, task.shown, wider, context, Path.cwd()).findings
+            return linter.lint_path(Path(task.name), task.shown, wider, context).findings
+
+        found = matrix.every_target(result.findings, task.settings, relint)
         rows = [{"path": task.shown, **row} for row in found]
     if flags.emit_expanded and doc is not None:
         flags.emit_expanded.write_bytes(doc.source)

@@ -1,6 +1,8 @@
 """The compatibility matrix: what each target will do with one model, and why.
 
-One row per selected target. The prediction is the worst effect the model's findings have
+One row per target, every target (:func:`every_target`), the selected ones marked: the
+matrix is a display, so asking for it never changes which targets the findings and the
+exit code are for. The prediction is the worst effect the model's findings have
 on that target (:mod:`urdflint.model.effects`): it loads, loads with changes, is refused or
 crashes the consumer. With ``--confirm``, the row also says what the target's engine did
 when it loaded the model (the E findings): the two side by side are the check on the
@@ -9,7 +11,8 @@ prediction.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
 from typing import Any
 
 from urdflint.model import targets as T
@@ -25,6 +28,30 @@ CONFIRMS: dict[str, Outcome] = {
     "E005": Outcome.CRASHES,
 }
 NOT_INSTALLED = "not-installed"  # the variant of E001's "not installed" note
+
+
+def every_target(
+    findings: Sequence[Finding], settings: Any, relint: Callable[[Any], Sequence[Finding]]
+) -> list[dict[str, Any]]:
+    """Every target's row for one model linted with ``settings`` (its ``findings``).
+
+    A selected target's row comes from those findings, the ones reported. The others come
+    from ``relint(wider)``: the same model linted again with every target and without the
+    engines (``--confirm``'s findings are the first run's); those findings are only used
+    here, never reported. Each row says whether its target is ``selected``.
+    """
+    selected = set(settings.targets)
+    others = [t for t in T.TARGETS if t not in selected]
+    found = rows(findings, tuple(selected), settings.confirm)
+    if others:
+        wider = replace(settings, targets=tuple(T.TARGETS), confirm=())
+        more = [*relint(wider), *(f for f in findings if f.engine)]
+        found += rows(more, tuple(others), settings.confirm)
+    order = {t: n for n, t in enumerate(T.ordered(tuple(T.TARGETS)))}
+    found.sort(key=lambda row: order[row["target"]])
+    for row in found:
+        row["selected"] = row["target"] in selected
+    return found
 
 
 def rows(

@@ -39,12 +39,15 @@ def table(rows: Sequence[dict[str, Any]]) -> list[str]:
         for row in block:
             label = row["label"] + ("" if row["basis"] == "engine" else "*")
             predicted = LABELS[row["predicted"]["outcome"]]
-            text = f"  {label:<{width}} {predicted:<19}"
+            mark = "✓" if row.get("selected", True) else " "
+            text = f"  {mark} {label:<{width}} {predicted:<19}"
             if confirmed:
                 seen = row["confirmed"]
                 text += f" {'engine: ' + LABELS[seen['outcome']] if seen else '':<27}"
             brief = row["predicted"]["outcome"] in ("refused", "crashes")
             lines.append(f"{text} {_deciding(row['predicted']['findings'], brief)}".rstrip())
+    if not all(r.get("selected", True) for r in rows):
+        lines.append("  ✓ the targets checked: their findings are reported and decide the exit code")
     if any(r["basis"] != "engine" for r in rows):
         lines.append("  * not run here: predicted from its source code and documentation")
     return lines
