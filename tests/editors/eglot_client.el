@@ -69,15 +69,22 @@ package-install from GNU ELPA). Nil when there is none."
     (unless (urdflint-test--load-eglot)
       (error "No Eglot: Emacs 29+ has it built in; on Emacs 28 install elpa-eglot (Debian) or M-x package-install RET eglot"))
     (urdflint-test--step "eglot" (urdflint-test--eglot-version))
+    ;; README's setup (the server command aside).
     (add-to-list 'auto-mode-alist '("\\.\\(?:urdf\\|xacro\\)\\'" . nxml-mode))
     (add-to-list 'eglot-server-programs
                  `((nxml-mode :language-id "xml") . (,python "-m" "urdflint" "lsp" "--no-cache")))
+    (add-hook 'nxml-mode-hook
+              (lambda ()
+                (when (and buffer-file-name
+                           (string-match-p "\\.\\(?:urdf\\|xacro\\)\\'" buffer-file-name))
+                  (eglot-ensure))))
     ;; The test's directory is no VCS repository: make it the project (the LSP root).
     (add-hook 'project-find-functions (lambda (_dir) (cons 'transient root)))
     (find-file file)
     (unless (eq major-mode 'nxml-mode) (error "%s opened in %s, not nxml-mode" file major-mode))
-    ;; What `eglot-ensure' does after the command that opened the file (no command loop here).
-    (apply #'eglot (eglot--guess-contact))
+    ;; `eglot-ensure' connects when the command that opened the file ends: no command loop
+    ;; here, so run what ends one.
+    (run-hooks 'post-command-hook)
     (unless (urdflint-test--wait 60 #'eglot-managed-p) (error "Eglot never managed %s" file))
     (flymake-start)
     (urdflint-test--wait 60 (lambda () (urdflint-test--with-code code)))
