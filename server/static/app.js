@@ -45,6 +45,17 @@
   let download = null; // the Blob URL of the fixed file, revoked when replaced
   let linkOf = []; // finding index -> the link it belongs to (from the scene), or undefined
   let rowIds = []; // finding index -> its row's id
+  let groups = []; // the findings table's rule groups: {id, code, body, rows: [{row, text, ...}], ...}
+  let sections = []; // the severities: {severity, head, total, rules}
+  let ruleIds = new Map(); // rule code -> the id of its group (its tbody) in the findings table
+  let linkOrder = []; // the scene's links, in tree order (the link filter lists them so)
+  let showAll = false; // every rule unfolded past LIMIT ("Show all")
+  let perRule = 3; // rows each rule shows now (LIMIT, or fewer when many rules match)
+  const filters = { severity: "", rule: "", link: "", text: "" };
+  // how many rows a rule shows before "Show N more": LIMIT, fewer when many rules match (a
+  // big robot's page stays a few screens long: about ROWS rows in all), never none
+  const LIMIT = 3;
+  const ROWS = 24;
   const picked = { scene: null, findings: [] }; // what the selected link's box reads
   const LEGIBLE = 0.8; // the diagram is never shrunk below this (labels of about 9 px)
   const BIG_TREE = 40; // links past which the diagram starts folded (the outline reads better)
@@ -233,6 +244,7 @@
     renderModels(doc.models || {});
     const scene = firstScene(doc.scene);
     linkOf = linksOfFindings(doc.findings, scene);
+    linkOrder = scene ? scene.links.map((l) => l.name) : [];
     const anchors = renderFindings(doc.findings, paths[0]);
     renderMatrix(Array.isArray(doc.matrix) ? doc.matrix : [], !!(asked && asked.matrix), anchors);
     renderTrees(doc.svg || {});
@@ -282,51 +294,215 @@
   }
 
   function renderFindings(findings, upload) {
+    // one row group (tbody) per rule within each severity, the rule's header saying how
+    // many; past its first few rows a rule shows "Show N more". The filters hide what does
+    // not match
     const table = $("findings");
     rowIds = [];
+    groups = [];
+    sections = [];
+    ruleIds = new Map();
     const indexOf = new Map(findings.map((f, i) => [f, i]));
     table.querySelectorAll("tbody").forEach((body) => body.remove());
     $("no-findings").hidden = findings.length > 0;
     table.hidden = findings.length === 0;
+    $("findings-tools").hidden = findings.length === 0;
     const many = new Set(findings.map((f) => f.path)).size > 1;
     const anchors = new Map(); // "path|line|code|element" and "line|code" -> the row's id
     let count = 0;
     for (const sev of SEVERITIES) {
-      const group = findings.filter((f) => f.severity === sev);
-      if (!group.length) continue;
-      const body = el("tbody", { class: sev, "data-severity": sev });
-      const title = `${group.length} ${group.length === 1 ? sev : PLURAL[sev]}`;
-      body.append(el("tr", { class: "group-row" },
-        el("th", { class: "group", colspan: "4", scope: "rowgroup" }, title[0].toUpperCase() + title.slice(1))));
-      for (const f of group) {
-        const code = el("td", { class: "code" },
-          el("a", { href: `/rules/${encodeURIComponent(f.code)}`, target: "_blank", rel: "noopener" }, f.code),
-          el("span", { class: "rule-name" }, f.name));
-        const kind = fixable(f, upload);
-        if (kind) {
-          code.append(el("span", {
-            class: "badge fixable", "data-applicability": kind,
-            title: typeof f.autofix.description === "string" ? f.autofix.description : null,
-          }, kind === "unsafe" ? "fixable, unsafe" : "fixable"));
+      const bySeverity = findings.filter((f) => f.severity === sev);
+      if (!bySeverity.length) continue;
+      const head = el("th", { class: "group", colspan: "2", scope: "rowgroup" });
+      const top = el("tbody", { class: `severity ${sev}`, "data-severity": sev }, el("tr", { class: "group-row" }, head));
+      table.append(top);
+      const section = { severity: sev, head, top, total: bySeverity.length, rules: [] };
+      const codes = [...new Set(bySeverity.map((f) => String(f.code)))].sort();
+      for (const code of codes) {
+        const same = bySeverity.filter((f) => String(f.code) === code);
+        const group = ruleGroup(sev, code, same);
+        if (!ruleIds.has(code)) ruleIds.set(code, group.id);
+        for (const f of same) {
+          const id = `finding-${++count}`;
+          rowIds[indexOf.get(f)] = id;
+          for (const key of [anchorKey(f, true), anchorKey(f, false)]) {
+            if (!anchors.has(key)) anchors.set(key, id);
+          }
+          const link = linkOf[indexOf.get(f)];
+          const row = findingRow(f, id, link, many ? `${f.path}:${f.line}` : f.line, group.fix ? null : f.fix, fixable(f, upload));
+          row.dataset.group = group.id;
+          group.body.insertBefore(row, group.more);
+          const words = [f.code, f.name, f.message, f.element, f.fix, link, f.path, f.line];
+          group.rows.push({ row, link, severity: sev, code, text: words.filter((w) => w !== null && w !== undefined).join(" ").toLowerCase() });
         }
-        const problem = el("td", { class: "problem" }, el("p", { class: "message" }, f.message));
-        if (f.fix) problem.append(el("p", { class: "fix" }, f.fix));
-        const line = many ? `${f.path}:${f.line}` : f.line;
-        const id = `finding-${++count}`;
-        rowIds[indexOf.get(f)] = id;
-        for (const key of [anchorKey(f, true), anchorKey(f, false)]) {
-          if (!anchors.has(key)) anchors.set(key, id);
-        }
-        const link = linkOf[indexOf.get(f)];
-        body.append(el("tr", {
-          id: id, tabindex: "-1",
-          class: "finding", "data-code": f.code, "data-line": f.line, "data-severity": f.severity,
-          "data-element": f.element, "data-link": link, title: link ? `Click to show link ‘${link}’ in the 3D view and the tree` : null,
-        }, el("td", { class: "num" }, line), code, el("td", { class: "element" }, ...breakable(f.element)), problem));
+        section.rules.push(group);
+        groups.push(group);
+        table.append(group.body);
       }
-      table.append(body);
+      sections.push(section);
     }
+    fillFilters(findings);
+    applyFilters();
     return anchors;
+  }
+
+  function ruleGroup(sev, code, same) {
+    // a rule's tbody: its header (a fold button with the rule's code, name and count, the
+    // rule's page, the fix when every finding shares it) and its "Show N more" row
+    const id = `rule-${sev}-${code.replace(/[^A-Za-z0-9_-]/g, "_")}`;
+    const shared = same.length > 1 && same.every((f) => f.fix && f.fix === same[0].fix) ? same[0].fix : null;
+    const fold = el("button", { type: "button", class: "rule-toggle", "aria-expanded": "true", "aria-controls": id,
+      title: "Fold or unfold this rule's findings" },
+    el("span", { class: "rule-code" }, code), " ", el("span", { class: "rule-name" }, same[0].name), " ",
+    el("span", { class: "rule-count" }));
+    const page = el("a", { class: "rule-link", href: `/rules/${encodeURIComponent(code)}`, target: "_blank", rel: "noopener",
+      "aria-label": `Rule ${code}: what it checks and how to fix it` }, "rule");
+    const head = el("th", { colspan: "2", scope: "rowgroup", class: "rule-head" },
+      el("div", { class: "rule-line" }, fold, page, shared ? el("p", { class: "fix" }, shared) : null));
+    const more = el("button", { type: "button", class: "more", "aria-expanded": "false", "aria-controls": id });
+    const moreRow = el("tr", { class: "more-row" }, el("td", { colspan: "2" }, more));
+    const body = el("tbody", { id, class: `rule ${sev}`, "data-severity": sev, "data-code": code },
+      el("tr", { class: "rule-row", "data-code": code, tabindex: "-1" }, head), moreRow);
+    const group = { id, code, severity: sev, body, fold, button: more, more: moreRow, rows: [], fix: shared, expanded: false, folded: false };
+    fold.addEventListener("click", () => {
+      group.folded = !group.folded;
+      applyFilters();
+    });
+    more.addEventListener("click", () => {
+      group.expanded = !group.expanded;
+      applyFilters();
+      if (!group.expanded) group.body.scrollIntoView({ block: "nearest" });
+    });
+    return group;
+  }
+
+  function findingRow(f, id, link, line, fix, kind) {
+    // the line; the message with the element after it (small), the fix, the badge
+    const problem = el("td", { class: "problem" },
+      el("p", { class: "what" }, el("span", { class: "message" }, f.message), " ",
+        el("span", { class: "element", title: "The element (XPath)" }, ...breakable(f.element))));
+    if (kind) {
+      problem.firstChild.append(" ", el("span", {
+        class: "badge fixable", "data-applicability": kind,
+        title: typeof f.autofix.description === "string" ? f.autofix.description : null,
+      }, kind === "unsafe" ? "fixable, unsafe" : "fixable"));
+    }
+    if (fix) problem.append(el("p", { class: "fix" }, fix));
+    return el("tr", {
+      id: id, tabindex: "-1",
+      class: "finding", "data-code": f.code, "data-line": f.line, "data-severity": f.severity,
+      "data-element": f.element, "data-link": link, title: link ? `Click to show link ‘${link}’ in the 3D view and the tree` : null,
+    }, el("td", { class: "num" }, line), problem);
+  }
+
+  // -- the findings' filters ---------------------------------------------------------------
+
+  function fillFilters(findings) {
+    // the rules and the links with findings, with their counts; the filters start cleared
+    const rules = new Map();
+    for (const f of findings) {
+      const code = String(f.code);
+      if (!rules.has(code)) rules.set(code, { name: f.name, n: 0 });
+      rules.get(code).n += 1;
+    }
+    $("filter-rule").replaceChildren(el("option", { value: "" }, "all rules"),
+      ...[...rules.keys()].sort().map((code) => el("option", { value: code }, `${code} ${rules.get(code).name} (${rules.get(code).n})`)));
+    const links = new Map();
+    for (const name of linkOf) if (name !== undefined) links.set(name, (links.get(name) || 0) + 1);
+    const named = [...links.keys()].sort((a, b) => (linkOrder.indexOf(a) - linkOrder.indexOf(b)) || (a < b ? -1 : 1));
+    $("filter-link").replaceChildren(el("option", { value: "" }, "all links"),
+      ...named.map((name) => el("option", { value: name }, `${name} (${links.get(name)})`)));
+    $("filter-link").disabled = named.length === 0;
+    for (const key of Object.keys(filters)) filters[key] = "";
+    $("filter-severity").value = $("filter-rule").value = $("filter-link").value = $("filter-text").value = "";
+    showAll = false;
+  }
+
+  function matches(item) {
+    return (!filters.severity || item.severity === filters.severity)
+      && (!filters.rule || item.code === filters.rule)
+      && (!filters.link || item.link === filters.link)
+      && (!filters.text || item.text.includes(filters.text));
+  }
+
+  function applyFilters() {
+    // which rows show: those matching the filters, the first few of each rule (LIMIT, or
+    // fewer when many rules match) unless it is opened (or the only rule left); the
+    // headers count what matches
+    const filtered = Object.values(filters).some(Boolean);
+    const found = groups.map((g) => g.rows.filter(matches));
+    const ruling = found.filter((m) => m.length).length;
+    const alone = ruling === 1;
+    const few = Math.max(1, Math.min(LIMIT, Math.floor(ROWS / Math.max(ruling, 1))));
+    perRule = few;
+    let matching = 0;
+    let shown = 0;
+    let rules = 0;
+    groups.forEach((group, i) => {
+      const hits = found[i];
+      const all = group.rows.length;
+      matching += hits.length;
+      group.body.hidden = hits.length === 0;
+      if (!hits.length) return;
+      rules += 1;
+      const open = !group.folded;
+      const room = group.expanded || showAll || alone ? Infinity : few;
+      const visible = new Set(open ? hits.slice(0, room) : []);
+      for (const item of group.rows) item.row.hidden = !visible.has(item);
+      shown += visible.size;
+      group.fold.setAttribute("aria-expanded", String(open));
+      group.fold.querySelector(".rule-count").textContent = hits.length === all ? `×${all}` : `×${hits.length} of ${all}`;
+      const rest = hits.length - few;
+      group.more.hidden = !open || rest <= 0 || showAll || alone;
+      group.button.setAttribute("aria-expanded", String(group.expanded));
+      group.button.textContent = group.expanded ? "Show fewer" : `Show ${rest} more`;
+    });
+    for (const section of sections) {
+      const hits = section.rules.reduce((n, g) => n + g.rows.filter(matches).length, 0);
+      section.top.hidden = hits === 0;
+      const noun = section.total === 1 ? section.severity : PLURAL[section.severity];
+      const title = hits === section.total ? `${section.total} ${noun}` : `${hits} of ${section.total} ${noun}`;
+      section.head.textContent = title[0].toUpperCase() + title.slice(1);
+    }
+    const total = groups.reduce((n, g) => n + g.rows.length, 0);
+    const nothing = filtered && matching === 0;
+    $("no-match").hidden = !nothing;
+    $("findings").hidden = total === 0 || nothing;
+    $("filter-clear").hidden = !filtered;
+    const expand = $("findings-expand");
+    expand.hidden = total === 0;
+    expand.textContent = showAll ? "Show fewer" : "Show all";
+    expand.setAttribute("aria-expanded", String(showAll));
+    const of = filtered ? `${matching} of ${total} findings match` : `${total} finding${total === 1 ? "" : "s"}`;
+    $("findings-count").textContent = total
+      ? `${of} in ${rules} rule${rules === 1 ? "" : "s"}${shown < matching ? `; ${shown} shown` : ""}` : "";
+  }
+
+  function onFilter() {
+    filters.severity = $("filter-severity").value;
+    filters.rule = $("filter-rule").value;
+    filters.link = $("filter-link").value;
+    filters.text = $("filter-text").value.trim().toLowerCase();
+    applyFilters();
+  }
+
+  function clearFilters() {
+    for (const key of Object.keys(filters)) filters[key] = "";
+    $("filter-severity").value = $("filter-rule").value = $("filter-link").value = $("filter-text").value = "";
+    applyFilters();
+  }
+
+  function reveal(target) {
+    // make a finding's row (or a rule's group) visible: the filters cleared if they hide
+    // it, its rule unfolded, and opened past its first rows if it is further down
+    const body = target.closest("tbody");
+    const group = groups.find((g) => g.body === body);
+    if (!group) return;
+    const item = group.rows.find((r) => r.row === target);
+    if (item ? !matches(item) : !group.rows.some(matches)) clearFilters();
+    group.folded = false;
+    if (item && group.rows.filter(matches).indexOf(item) >= perRule) group.expanded = true;
+    applyFilters();
   }
 
   function fixable(f, upload) {
@@ -408,16 +584,29 @@
   }
 
   function findingLinks(found, anchors, describe) {
-    // each deciding finding as "CODE line N": a link to its row in the findings table
+    // the deciding findings by rule: "CODE line N" for one, "CODE ×N" for several, each a
+    // link to its row (or its rule's group) in the findings table, with what it does
     const list = el("ul", { class: "deciding" });
+    const byCode = new Map();
     for (const f of Array.isArray(found) ? found : []) {
-      const label = `${f.code} line ${f.line}`;
-      const id = anchors.get(anchorKey(f, true)) || anchors.get(anchorKey(f, false));
+      const code = String(f.code);
+      if (!byCode.has(code)) byCode.set(code, []);
+      byCode.get(code).push(f);
+    }
+    for (const [code, same] of byCode) {
+      const one = same.length === 1;
+      const label = one ? `${code} line ${same[0].line}` : `${code} ×${same.length}`;
+      const row = anchors.get(anchorKey(same[0], true)) || anchors.get(anchorKey(same[0], false));
+      const id = one ? row : ruleIds.get(code) || row;
       const link = id
-        ? el("a", { href: `#${id}`, class: "finding-link", "data-finding": id, "data-code": f.code }, label)
-        : el("span", { class: "finding-ref", "data-code": f.code }, label);
-      const note = describe(f);
-      list.append(el("li", { title: note.title || null }, link, note.text ? el("span", { class: "why" }, note.text) : null));
+        ? el("a", { href: `#${id}`, class: "finding-link", "data-finding": id, "data-code": code, "data-count": same.length }, label)
+        : el("span", { class: "finding-ref", "data-code": code, "data-count": same.length }, label);
+      const notes = same.map(describe);
+      const distinct = (key) => [...new Set(notes.map((n) => n[key]).filter(Boolean))];
+      const texts = distinct("text");
+      const titles = distinct("title");
+      const title = titles.length > 3 ? `${titles.slice(0, 3).join("\n")}\n…` : titles.join("\n");
+      list.append(el("li", { title: title || null }, link, texts.length ? el("span", { class: "why" }, texts.join(", ")) : null));
     }
     return list.childElementCount ? list : null;
   }
@@ -436,6 +625,8 @@
       const name = el("th", { scope: "row", class: "target" }, row.label || row.target);
       if (many) name.append(el("span", { class: "basis" }, row.path));
       if (row.basis && row.basis !== "engine") name.append(el("span", { class: "basis" }, `from its ${row.basis}`));
+      // every target has a row; those the check was not for are there to compare
+      if (row.selected === false) name.append(el("span", { class: "basis" }, "not checked: for comparison"));
       const engine = el("td", { class: "engine" });
       if (confirmed) {
         engine.append(el("span", { class: "engine-name" }, confirmed.engine), " ", outcome(confirmed.outcome));
@@ -448,6 +639,7 @@
         (f) => ({ text: f.consequence, title: f.detail || null }));
       body.append(el("tr", {
         class: "matrix-row", "data-target": row.target, "data-outcome": predicted.outcome,
+        "data-selected": typeof row.selected === "boolean" ? String(row.selected) : null,
         "data-confirmed": confirmed ? confirmed.outcome : "",
       }, name, el("td", { class: "predicted" }, outcome(predicted.outcome)), engine,
       el("td", { class: "why" }, why || el("span", { class: "muted" }, "—"))));
@@ -455,11 +647,14 @@
   }
 
   function goToFinding(event) {
+    // a finding's row, or a rule's group (its header row), shown, highlighted and focused
     const link = event.target.closest("a.finding-link");
     if (!link) return;
-    const row = document.getElementById(link.dataset.finding);
-    if (!row) return;
+    const target = document.getElementById(link.dataset.finding);
+    if (!target) return;
     event.preventDefault();
+    const row = target.tagName === "TBODY" ? target.querySelector("tr.rule-row") : target;
+    reveal(row);
     document.querySelectorAll("#findings tr.highlight").forEach((tr) => tr.classList.remove("highlight"));
     row.classList.add("highlight");
     row.scrollIntoView({ behavior: "smooth", block: "center" });
@@ -649,6 +844,14 @@
   $("matrix").addEventListener("click", goToFinding);
   $("picked").addEventListener("click", goToFinding);
   $("findings").addEventListener("click", rowClicked);
+  for (const id of ["filter-severity", "filter-rule", "filter-link"]) $(id).addEventListener("change", onFilter);
+  $("filter-text").addEventListener("input", onFilter);
+  $("filter-clear").addEventListener("click", clearFilters);
+  $("findings-expand").addEventListener("click", () => {
+    showAll = !showAll;
+    groups.forEach((g) => { g.expanded = false; if (showAll) g.folded = false; });
+    applyFilters();
+  });
   $("tree").addEventListener("click", diagramClicked);
   document.addEventListener("urdflint:select", onSelect);
   $("diagram-card").addEventListener("toggle", () => {

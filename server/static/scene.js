@@ -3,7 +3,10 @@
 // in the world (ROS: z up, metres), meshes decoded from base64, each link's centre of mass
 // as a marker and its inertia as the uniform box of the same mass and inertia (Gazebo's
 // "View > Inertia"), the joint axes as arrows, links with findings in their severity's
-// colour. Renders on demand (after a change), never in a loop.
+// colour. The robot comes first: visuals in their own colours (or a neutral grey), the
+// camera framed on them; the overlays (centres of mass, inertia boxes, joint axes, finding
+// colours) show for the selected link only, unless the reader asks for those of every
+// flagged link or of every link. Renders on demand (after a change), never in a loop.
 // Events on document: urdflint:results {scene, started} -> draw; urdflint:select {link}
 // -> highlight; a click on a link sends urdflint:select {link, from: "scene"}.
 // three.js loads on the first check (or when the form is sent), not with the page.
@@ -14,7 +17,10 @@ const COLLISION = "#0e9384";
 const INERTIA = "#7a5af8";
 const COM = "#101828";
 const AXIS = "#3e4fd8";
-const GROUPS = ["visual", "collision", "inertia", "com", "axes"];
+// "stand": the collision geometry of a link with no visual, shown in its place
+const GROUPS = ["visual", "stand", "collision", "inertia", "com", "axes"];
+const OVERLAYS = ["com", "inertia", "axes", "findings"];
+const FILLS = 6; // inertia boxes past which only their edges are drawn (the selected one's filled)
 const MARKER = 0.009; // a centre of mass's radius per metre from the camera: ~5 px, always
 const $ = (id) => document.getElementById(id);
 
@@ -31,10 +37,10 @@ const MATERIALS = {
 
 let loading = null; // the three.js import, once
 let view = null; // {THREE, renderer, scene, camera, controls, ...}; null when there is no WebGL
-let current = null; // the drawn robot: {groups, links: Map(name -> {objects, com}), size}
-const show = { visual: true, collision: false, com: true, inertia: "all", axes: true, findings: true };
-const MANY = 15; // links with an inertial past which only the flagged inertia boxes show at first
-const chosen = {}; // the toggles the reader changed (they keep their state between checks)
+let current = null; // the drawn robot: {groups, links: Map(name -> {objects, com, marks}), size}
+// overlays: "selected" (the selected link's only), "flagged" (also every link with a
+// finding of their kind), "all"; com, inertia, axes, findings: which overlays there are
+const show = { visual: true, collision: false, overlays: "selected", com: true, inertia: true, axes: true, findings: true };
 
 function three() {
   if (!loading) {
@@ -90,6 +96,7 @@ function setUp(lib) {
   scene.add(camera);
   view = { THREE, renderer, camera, controls, scene, raycaster: new THREE.Raycaster() };
   controls.addEventListener("change", draw);
+  controls.addEventListener("start", () => { if (current) current.framed = false; });
   new ResizeObserver(resize).observe(box);
   pickOnClick(renderer.domElement);
   resize();
@@ -147,7 +154,8 @@ function resize() {
   view.renderer.setSize(width, height, false);
   view.camera.aspect = width / height;
   view.camera.updateProjectionMatrix();
-  draw();
+  if (current && current.framed) frame(); // untouched since framed: framed again, to fit
+  else draw();
 }
 
 function draw() {
@@ -194,25 +202,44 @@ function place(object, at) {
   return object;
 }
 
-function linkColour(link, own) {
-  return show.findings && link.severity ? COLOURS[link.severity] : own || PLAIN;
+function tinted(entry) {
+  // a link in its worst finding's colour: when finding colours are on and it is in scope
+  return !!(show.findings && entry.link.severity && inScope(entry, "findings"));
+}
+
+function inScope(entry, kind, chosenOnly) {
+  // whether an overlay of this kind shows for this link: the selected link has them all;
+  // "flagged" adds the links with findings of that kind (inertia findings for the box and
+  // the centre of mass, the joint's for its axis, any for the colour); "all", every link.
+  // chosenOnly: by the scope the reader chose, whatever is selected
+  const link = entry.link;
+  if (!chosenOnly && current && current.selected === link.name) return true;
+  if (show.overlays === "all") return true;
+  if (show.overlays !== "flagged") return false;
+  if (kind === "com" || kind === "inertia") return !!link.inertia_severity;
+  if (kind === "axes") return !!(entry.joint && entry.joint.severity);
+  return !!link.severity;
 }
 
 function addShapes(robot, link, tag, meshes) {
+  // a link's visuals, or its collisions: in the "collision" group, or in the "stand" group
+  // (drawn like the visuals are) when the link has no visual to show
   const { THREE } = view;
+  const entry = robot.links.get(link.name);
+  const group = tag === "collision" && !entry.objects.length ? "stand" : tag;
   for (const shape of link[tag]) {
     const geometry = primitive(THREE, shape, meshes);
     if (!geometry || !Array.isArray(shape.at)) continue;
     const rgba = tag === "visual" && Array.isArray(shape.rgba) ? shape.rgba : null;
     const own = rgba ? new THREE.Color().setRGB(rgba[0], rgba[1], rgba[2], THREE.SRGBColorSpace) : null;
     const material = tag === "collision"
-      ? MATERIALS.seeThrough(THREE, { color: show.findings && link.severity ? COLOURS[link.severity] : COLLISION, opacity: 0.45 })
-      : MATERIALS.solid(THREE, { color: linkColour(link, own), transparent: !!rgba && rgba[3] < 1, opacity: rgba ? Math.max(0.15, rgba[3]) : 1 });
+      ? MATERIALS.seeThrough(THREE, { color: COLLISION, opacity: 0.45 })
+      : MATERIALS.solid(THREE, { color: own || PLAIN, transparent: !!rgba && rgba[3] < 1, opacity: rgba ? Math.max(0.15, rgba[3]) : 1 });
     material.userData = { own, tag };
     const mesh = place(new THREE.Mesh(geometry, material), shape.at);
     mesh.userData.link = link.name;
-    robot.groups[tag].add(mesh);
-    robot.links.get(link.name).objects.push(mesh);
+    robot.groups[group].add(mesh);
+    entry.objects.push(mesh);
   }
 }
 
@@ -236,11 +263,13 @@ function addInertia(robot, link) {
     robot.marks.push(fill.material, edges.material);
     if (!box.valid) edges.computeLineDistances();
     const group = place(new THREE.Group(), box.at);
-    group.userData.flagged = !!link.inertia_severity;
     group.add(fill, edges);
     fill.userData.link = link.name;
+    fill.userData.overlay = true;
     robot.groups.inertia.add(group);
     robot.links.get(link.name).objects.push(fill);
+    robot.links.get(link.name).marks.inertia = group;
+    robot.links.get(link.name).marks.fill = fill;
   }
   const marker = new THREE.Group(); // unit spheres, scaled to a constant size on screen
   const dot = new THREE.Mesh(new THREE.SphereGeometry(1, 16, 12), MATERIALS.marker(THREE, { color: colour || COM }));
@@ -254,13 +283,16 @@ function addInertia(robot, link) {
   marker.position.set(...inertial.com);
   robot.groups.com.add(marker);
   robot.links.get(link.name).com = marker.position.clone();
+  robot.links.get(link.name).marks.com = marker;
 }
 
 function addAxes(robot, joints) {
+  // each joint's axis, an overlay of its child link
   const { THREE } = view;
   const length = robot.size / 9;
   for (const joint of joints) {
-    if (!joint.axis) continue;
+    const child = robot.links.get(joint.child);
+    if (!joint.axis || !child) continue;
     const colour = joint.severity ? COLOURS[joint.severity] : AXIS;
     const arrow = new THREE.ArrowHelper(new THREE.Vector3(...joint.axis.direction),
       new THREE.Vector3(...joint.axis.origin), length, colour, length * 0.28, length * 0.14);
@@ -271,37 +303,28 @@ function addAxes(robot, joints) {
     arrow.line.material.depthTest = arrow.cone.material.depthTest = false;
     arrow.renderOrder = 11;
     robot.groups.axes.add(arrow);
+    child.marks.axes = arrow;
+    child.joint = joint;
   }
 }
 
 function bounds(THREE, robot, links) {
-  // what the camera frames: the geometry, the link frames and the centres of mass (not the
-  // inertia boxes: a tensor 1000x too large must not shrink the robot to a dot)
+  // what the camera frames: the robot as it looks, its visuals (and the collisions of links
+  // without one); never the inertia boxes (a tensor 1000x too large must not shrink the
+  // robot to a dot) nor the collision geometry. Without either: the link frames and the
+  // centres of mass
   const box = new THREE.Box3();
   box.expandByObject(robot.groups.visual);
-  box.expandByObject(robot.groups.collision);
-  for (const link of links) {
-    if (Array.isArray(link.at)) box.expandByPoint(new THREE.Vector3(...link.at.slice(0, 3)));
-    if (link.inertial && Array.isArray(link.inertial.com)) box.expandByPoint(new THREE.Vector3(...link.inertial.com));
+  box.expandByObject(robot.groups.stand);
+  if (box.isEmpty()) {
+    for (const link of links) {
+      if (Array.isArray(link.at)) box.expandByPoint(new THREE.Vector3(...link.at.slice(0, 3)));
+      if (link.inertial && Array.isArray(link.inertial.com)) box.expandByPoint(new THREE.Vector3(...link.inertial.com));
+    }
   }
   if (box.isEmpty()) box.set(new THREE.Vector3(-0.1, -0.1, -0.1), new THREE.Vector3(0.1, 0.1, 0.1));
   const size = box.getSize(new THREE.Vector3());
   if (size.length() < 0.05) box.expandByScalar(0.05);
-  return box;
-}
-
-function framed(THREE, robot) {
-  // the robot, and the inertia boxes up to 4 times its size: a box 30x its link's (a tensor
-  // 1000x too large) shows whole around the robot; a box of a tensor in g mm^2 (10^6x)
-  // would shrink the robot to a dot and is left to reach past the view
-  const box = robot.box.clone();
-  if (shown(robot.groups.axes)) box.union(new THREE.Box3().setFromObject(robot.groups.axes));
-  const limit = robot.size * 4;
-  for (const group of robot.groups.inertia.children) {
-    if (!shown(group)) continue;
-    const around = new THREE.Box3().setFromObject(group);
-    if (!around.isEmpty() && around.getSize(new THREE.Vector3()).length() <= limit) box.union(around);
-  }
   return box;
 }
 
@@ -315,7 +338,7 @@ function build(data) {
     root.add(robot.groups[name]);
   }
   const links = Array.isArray(data.links) ? data.links : [];
-  for (const link of links) robot.links.set(link.name, { link, objects: [], com: null });
+  for (const link of links) robot.links.set(link.name, { link, objects: [], com: null, marks: {} });
   const meshes = meshGeometries(THREE, Array.isArray(data.meshes) ? data.meshes : []);
   for (const link of links) {
     addShapes(robot, link, "visual", meshes);
@@ -331,17 +354,8 @@ function build(data) {
   root.add(floor);
   scene.add(root);
   current = robot;
-  if (!chosen.collision) {
-    // by default, collisions only for a robot with links that have nothing else to show
-    setShown("collision", links.some((l) => l.collision.length && !l.visual.length), true);
-  }
-  if (!chosen.inertia) {
-    // many boxes bury the robot (and sensor frames of 1 g with a token tensor have huge
-    // ones the rules rightly skip): past MANY links, the flagged ones only
-    setShown("inertia", links.filter((l) => l.inertial).length > MANY ? "flagged" : "all", true);
-  }
+  robot.points = outlinePoints(THREE, robot);
   applyShown();
-  robot.view = framed(THREE, robot);
   frame();
 }
 
@@ -353,20 +367,86 @@ function dispose(robot) {
   });
 }
 
+function corners(THREE, box) {
+  return Array.from({ length: 8 }, (_, i) => new THREE.Vector3(
+    i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z));
+}
+
+function outlinePoints(THREE, robot) {
+  // what framing fits into the view: the corners of each visual's box (of each stand-in
+  // collision's), tighter than the corners of the box around them all
+  const points = [];
+  for (const group of [robot.groups.visual, robot.groups.stand]) {
+    for (const object of group.children) {
+      const box = new THREE.Box3().setFromObject(object);
+      if (!box.isEmpty()) points.push(...corners(THREE, box));
+    }
+  }
+  return points.length ? points : corners(THREE, robot.box);
+}
+
+function framedPoints(THREE) {
+  // the robot's visuals; with the overlays the reader asked for every flagged link (or
+  // every link), their centres of mass and the inertia boxes up to 4 times the robot's size
+  // (a box 30x its link's, a tensor 1000x too large, shows whole around the robot; one of a
+  // tensor in g mm^2, 10^6x, would shrink the robot to a dot and is left to reach past)
+  const points = current.points.slice();
+  if (show.overlays === "selected") return points;
+  const limit = current.size * 4;
+  for (const entry of current.links.values()) {
+    if (show.com && entry.com && inScope(entry, "com", true)) points.push(entry.com);
+    const group = entry.marks.inertia;
+    if (show.inertia && group && inScope(entry, "inertia", true)) {
+      const box = new THREE.Box3().setFromObject(group);
+      if (!box.isEmpty() && box.getSize(new THREE.Vector3()).length() <= limit) points.push(...corners(THREE, box));
+    }
+  }
+  return points;
+}
+
 function frame() {
-  // the whole robot, seen from the front right and a little above
+  // the whole robot as large as the view allows (a small margin around), seen from the
+  // front right and a little above: the distance at which every point fits, the target
+  // moved so that the picture is centred
   const { THREE, camera, controls } = view;
-  const sphere = current.view.getBoundingSphere(new THREE.Sphere());
-  const radius = Math.max(sphere.radius, 0.05);
-  const fov = (camera.fov * Math.PI) / 180;
-  const distance = (radius / Math.sin(fov / 2)) * (camera.aspect < 1 ? 1 / camera.aspect : 1) * 1.05;
   const direction = new THREE.Vector3(0.55, -1, 0.5).normalize();
-  camera.position.copy(sphere.center).addScaledVector(direction, distance);
+  const forward = direction.clone().negate();
+  const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
+  const up = new THREE.Vector3().crossVectors(right, forward);
+  const tanV = Math.tan((camera.fov * Math.PI) / 360) * 0.9;
+  const tanH = tanV * camera.aspect;
+  const points = framedPoints(THREE);
+  const centre = new THREE.Box3().setFromPoints(points).getCenter(new THREE.Vector3());
+  const q = new THREE.Vector3();
+  let distance = 0;
+  for (let round = 0; round < 4; round++) {
+    distance = 0;
+    for (const p of points) {
+      q.subVectors(p, centre);
+      const z = q.dot(forward);
+      distance = Math.max(distance, Math.abs(q.dot(right)) / tanH - z, Math.abs(q.dot(up)) / tanV - z);
+    }
+    distance = Math.max(distance, current.size * 0.3, 0.05);
+    if (round === 3) break;
+    const span = [Infinity, -Infinity, Infinity, -Infinity];
+    for (const p of points) {
+      q.subVectors(p, centre);
+      const depth = distance + q.dot(forward);
+      const x = q.dot(right) / depth;
+      const y = q.dot(up) / depth;
+      span[0] = Math.min(span[0], x); span[1] = Math.max(span[1], x);
+      span[2] = Math.min(span[2], y); span[3] = Math.max(span[3], y);
+    }
+    centre.addScaledVector(right, ((span[0] + span[1]) / 2) * distance);
+    centre.addScaledVector(up, ((span[2] + span[3]) / 2) * distance);
+  }
+  camera.position.copy(centre).addScaledVector(direction, distance);
   camera.near = distance / 200;
   camera.far = distance * 200;
   camera.updateProjectionMatrix();
-  controls.target.copy(sphere.center);
+  controls.target.copy(centre);
   controls.update();
+  current.framed = true;
   draw();
 }
 
@@ -381,16 +461,31 @@ function setShown(name, value, quiet) {
 }
 
 function applyShown() {
+  // the groups' toggles, each link's overlays by scope, the colours
   if (!current) return;
-  for (const name of GROUPS) current.groups[name].visible = name === "inertia" ? show.inertia !== "none" : show[name];
-  for (const group of current.groups.inertia.children) group.visible = show.inertia === "all" || group.userData.flagged;
-  for (const { link, objects } of current.links.values()) {
+  for (const name of GROUPS) current.groups[name].visible = name === "stand" ? show.visual || show.collision : show[name];
+  const counts = { com: 0, inertia: 0, axes: 0, findings: 0 };
+  for (const entry of current.links.values()) {
+    const { link, objects, marks } = entry;
+    for (const kind of ["com", "inertia", "axes"]) {
+      if (!marks[kind]) continue;
+      marks[kind].visible = inScope(entry, kind);
+      if (marks[kind].visible && show[kind]) counts[kind] += 1;
+    }
+    const tint = tinted(entry);
+    if (tint) counts.findings += 1;
     for (const object of objects) {
       const data = object.material.userData || {};
-      if (data.tag === "visual") object.material.color.set(linkColour(link, data.own));
-      if (data.tag === "collision") object.material.color.set(show.findings && link.severity ? COLOURS[link.severity] : COLLISION);
+      if (data.tag === "visual") object.material.color.set(tint ? COLOURS[link.severity] : data.own || PLAIN);
+      if (data.tag === "collision") object.material.color.set(tint ? COLOURS[link.severity] : COLLISION);
     }
   }
+  // many boxes filled would hide the robot behind their tint: past FILLS, their edges only
+  for (const entry of current.links.values()) {
+    if (entry.marks.fill) entry.marks.fill.visible = counts.inertia <= FILLS || current.selected === entry.link.name;
+  }
+  // how many of each overlay are drawn (for tests and the curious)
+  $("view").dataset.overlays = OVERLAYS.map((kind) => `${kind} ${counts[kind]}`).join(", ");
   for (const material of current.marks) {
     const { flagged, plain } = material.userData;
     material.color.set(show.findings && flagged ? flagged : plain);
@@ -415,7 +510,7 @@ function highlight() {
   const box = new THREE.Box3();
   for (const object of picked.objects) {
     if (object.material.emissive) object.material.emissive.set("#3a3f4c");
-    if (shown(object)) box.expandByObject(object);
+    if (shown(object) && !object.userData.overlay) box.expandByObject(object);
   }
   if (picked.com && show.com) box.expandByPoint(picked.com);
   if (box.isEmpty() && Array.isArray(picked.link.at)) box.expandByPoint(new THREE.Vector3(...picked.link.at.slice(0, 3)));
@@ -428,11 +523,12 @@ function select(name, from) {
   if (!current) return;
   current.selected = name && current.links.has(name) ? name : null;
   $("view").dataset.selected = current.selected || "";
-  highlight();
+  applyShown(); // the selected link's overlays, and the highlight
   if (current.selected && from !== "scene") {
     // turn to the link, keeping the distance
     const target = current.outline ? current.outline.box.getCenter(new view.THREE.Vector3()) : null;
     if (target) {
+      current.framed = false;
       view.camera.position.add(target.clone().sub(view.controls.target));
       view.controls.target.copy(target);
       view.controls.update();
@@ -534,13 +630,14 @@ window.urdflintView = Object.freeze({
 
 document.addEventListener("urdflint:results", (event) => { results(event.detail); });
 document.addEventListener("urdflint:select", (event) => select(event.detail.link, event.detail.from));
+// the toggles keep their state from one check to the next
 document.querySelectorAll("[data-show]").forEach((box) => box.addEventListener("change", () => {
-  chosen[box.dataset.show] = true;
   setShown(box.dataset.show, box.type === "checkbox" ? box.checked : box.value);
+  // a camera the reader has not moved frames what is shown now
+  if (current && current.framed && ["overlays", "com", "inertia"].includes(box.dataset.show)) frame();
 }));
 $("view-reset").addEventListener("click", () => {
   if (!current) return;
-  current.view = framed(view.THREE, current);
   frame();
 });
 $("check-form").addEventListener("submit", prepare);

@@ -13,6 +13,7 @@ from __future__ import annotations
 import shutil
 import struct
 import time
+import zipfile
 from pathlib import Path
 from typing import Any
 
@@ -66,6 +67,17 @@ def new_driver(profile: Path) -> Any:
     return browser
 
 
+def mesh_zip(robot: Path, target: Path) -> Path:
+    """A corpus robot's ``meshes`` folder as the zip the page uploads (its folders are the
+    packages), written to ``target``."""
+    meshes = robot / "meshes"
+    with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as zf:
+        for path in sorted(meshes.rglob("*")):
+            if path.is_file():
+                zf.write(path, path.relative_to(meshes).as_posix())
+    return target
+
+
 def check(
     driver: Any, base_url: str, path: Path | None = None, meshes: Path | None = None, **fields: str
 ) -> str:
@@ -99,18 +111,44 @@ def check(
         pytest.fail(f"no result shown; page status: {driver.find_element(By.ID, 'status').text}")
 
 
-def rows(driver: Any) -> list[dict[str, str]]:
-    """The findings table as data: one dict per row, in page order."""
+def rows(driver: Any) -> list[dict[str, Any]]:
+    """The findings table as data: one dict per finding row, in page order, shown or not
+    (``shown``: not folded away nor filtered out). Rows are grouped by rule: the rule's page,
+    name and (when every finding of the rule shares it) fix are in its group's header."""
     script = """
-      return Array.from(document.querySelectorAll('#findings tr.finding'), (tr) => ({
-        line: tr.dataset.line, code: tr.dataset.code, severity: tr.dataset.severity,
-        element: tr.dataset.element, group: tr.parentElement.dataset.severity,
-        href: tr.querySelector('.code a').getAttribute('href'),
-        name: tr.querySelector('.rule-name').textContent,
-        message: tr.querySelector('.message').textContent,
-        fix: (tr.querySelector('.fix') || {}).textContent || null,
-        shownLine: tr.querySelector('td.num').textContent,
-        shownElement: tr.querySelector('td.element').textContent}));
+      return Array.from(document.querySelectorAll('#findings tr.finding'), (tr) => {
+        const head = tr.parentElement.querySelector('tr.rule-row');
+        return {line: tr.dataset.line, code: tr.dataset.code, severity: tr.dataset.severity,
+          element: tr.dataset.element, group: tr.parentElement.dataset.severity,
+          link: tr.dataset.link || null, rule: tr.parentElement.dataset.code,
+          href: head.querySelector('a.rule-link').getAttribute('href'),
+          name: head.querySelector('.rule-name').textContent,
+          message: tr.querySelector('.message').textContent,
+          fix: (tr.querySelector('.fix') || head.querySelector('.fix') || {}).textContent || null,
+          shownLine: tr.querySelector('td.num').textContent,
+          shownElement: tr.querySelector('.element').textContent,
+          shown: !tr.hidden && !tr.parentElement.hidden};
+      });
+    """
+    return list(driver.execute_script(script))
+
+
+def rules(driver: Any) -> list[dict[str, Any]]:
+    """The findings table's rule groups, in page order: code, severity, the header's count
+    text, whether the group shows, how many of its rows show, and its "Show N more" text
+    (``None`` when hidden)."""
+    script = """
+      return Array.from(document.querySelectorAll('#findings tbody.rule'), (body) => {
+        const more = body.querySelector('tr.more-row');
+        const fold = body.querySelector('button.rule-toggle');
+        const found = Array.from(body.querySelectorAll('tr.finding'));
+        return {code: body.dataset.code, severity: body.dataset.severity, id: body.id,
+          count: body.querySelector('.rule-count').textContent, shown: !body.hidden,
+          expanded: fold.getAttribute('aria-expanded'), rows: found.length,
+          visible: found.filter((tr) => !tr.hidden).length,
+          more: more.hidden ? null : more.querySelector('button').textContent,
+          moreExpanded: more.querySelector('button').getAttribute('aria-expanded')};
+      });
     """
     return list(driver.execute_script(script))
 

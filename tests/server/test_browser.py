@@ -32,6 +32,7 @@ from tests.server.browsing import (
     check,
     new_driver,
     rows,
+    rules,
     screenshot,
     tree,
 )
@@ -120,7 +121,8 @@ def test_corpus_robot_matches_the_api(driver: Any, base_url: str, tmp_path: Path
     api = answer.json()
     found = rows(driver)
     order = {"error": 0, "warning": 1, "info": 2}
-    expected = sorted(api["findings"], key=lambda f: order[f["severity"]])  # stable: by line
+    # by severity, then by rule; within a rule, as the API lists them (by line)
+    expected = sorted(api["findings"], key=lambda f: (order[f["severity"]], f["code"]))
     assert [(r["line"], r["code"], r["message"]) for r in found] == [
         (str(f["line"]), f["code"], f["message"]) for f in expected
     ]
@@ -316,6 +318,8 @@ def matrix_rows(driver: Any) -> list[dict[str, Any]]:
     script = """
       return Array.from(document.querySelectorAll('#matrix tr.matrix-row'), (tr) => ({
         target: tr.dataset.target, outcome: tr.dataset.outcome, confirmed: tr.dataset.confirmed,
+        selected: tr.dataset.selected,
+        note: Array.from(tr.querySelectorAll('th.target .basis'), (s) => s.textContent).join(' '),
         label: tr.querySelector('th.target').firstChild.textContent,
         shown: tr.querySelector('td.predicted .outcome').textContent,
         colour: getComputedStyle(tr.querySelector('td.predicted .outcome')).color,
@@ -352,20 +356,33 @@ def test_the_simulators_table_matches_the_api(driver: Any, base_url: str, tmp_pa
     for row, expected in zip(shown, api["matrix"], strict=True):
         assert row["outcome"] == expected["predicted"]["outcome"]
         assert row["label"] == expected["label"] and row["confirmed"] == ""
-        assert len(row["links"]) == len(expected["predicted"]["findings"])
-        for link, found in zip(row["links"], expected["predicted"]["findings"], strict=True):
-            assert link["text"] == f"{found['code']} line {found['line']}"
-            target = driver.find_element(By.ID, link["row"])
-            assert target.get_attribute("data-code") == found["code"]
-            assert target.get_attribute("data-line") == str(found["line"])
+        # the deciding findings by rule: "CODE line N" for one, "CODE ×N" for several
+        by_rule: dict[str, list[dict[str, Any]]] = {}
+        for found in expected["predicted"]["findings"]:
+            by_rule.setdefault(found["code"], []).append(found)
+        assert [link["code"] for link in row["links"]] == list(by_rule)
+        for link, (code, same) in zip(row["links"], by_rule.items(), strict=True):
+            one = len(same) == 1
+            assert link["text"] == (
+                f"{code} line {same[0]['line']}" if one else f"{code} ×{len(same)}"
+            )
+            target = driver.find_element(By.ID, link["row"])  # the row, or the rule's group
+            assert target.get_attribute("data-code") == code
+            if one:
+                assert target.get_attribute("data-line") == str(same[0]["line"])
     linked = [link for row in shown for link in row["links"]]
     if linked:  # the rules' effects decide whether any finding is linked
         driver.find_element(By.CSS_SELECTOR, "#matrix a.finding-link").click()
         WebDriverWait(driver, 5).until(
-            lambda d: d.find_elements(By.CSS_SELECTOR, "#findings tr.finding.highlight")
+            lambda d: d.find_elements(By.CSS_SELECTOR, "#findings tr.highlight")
         )
         row = driver.find_element(By.CSS_SELECTOR, "#findings tr.highlight")
-        assert row.get_attribute("id") == linked[0]["row"]
+        # a finding's row, or the header of its rule's group
+        assert linked[0]["row"] in (
+            row.get_attribute("id"),
+            row.find_element(By.XPATH, "..").get_attribute("id"),
+        )
+        assert row.is_displayed()
 
 
 # a check answer with every outcome, a confirmation and deciding findings, served by a stub
@@ -556,6 +573,188 @@ def test_simulators_outcomes_engines_and_links(driver: Any, base_url: str) -> No
         driver.set_window_size(1400, 1000)
 
 
+# -- the findings by rule: counts, "Show N more", filters -------------------------------------
+
+
+def _finding(
+    code: str, name: str, severity: str, line: int, link: str, message: str, fix: str
+) -> dict[str, Any]:
+    return {
+        "code": code, "name": name, "severity": severity, "path": "r.urdf", "line": line,
+        "column": 3, "element": f"/robot/link[@name='{link}']", "message": message, "fix": fix,
+    }  # fmt: skip
+
+
+MESH = "package://a_rather_long_package_name/meshes/with/many/folders/deep/down/{}.stl"
+GROUPED_FINDINGS = [
+    *(
+        _finding("C009", "unsupported-mesh-format", "error", 10 + i, f"part{i}",
+                 f"Drake cannot load STL collision mesh '{MESH.format(f'm{i}')}' of link 'part{i}'",
+                 "Convert the mesh to OBJ.")
+        for i in range(7)
+    ),
+    _finding("G005", "deprecated-gazebo-element", "warning", 40, "part0",
+             "<stopKd> of joint 'j0' is no longer read by sdformat", "Use <stopErp>."),
+    *(
+        _finding("J003", "safety-controller-ignored", "info", 50 + i, f"part{i}",
+                 f"joint 'j{i}' has a <safety_controller>", f"Narrow the limits of j{i}.")
+        for i in range(2)
+    ),
+]  # fmt: skip
+
+
+def _scene_link(name: str, findings: list[int]) -> dict[str, Any]:
+    return {
+        "name": name, "at": [0, 0, 0, 0, 0, 0, 1], "severity": "error" if findings else None,
+        "inertia_severity": None, "findings": findings, "visual": [], "collision": [],
+        "inertial": None, "parent": None,
+    }  # fmt: skip
+
+
+def _grouped_answer() -> dict[str, Any]:
+    findings = GROUPED_FINDINGS
+    links = [
+        _scene_link(
+            f"part{i}",
+            [n for n, f in enumerate(findings) if f["element"] == f"/robot/link[@name='part{i}']"],
+        )
+        for i in range(8)
+    ]
+    deciding = [
+        {"code": f["code"], "path": "r.urdf", "line": f["line"], "element": f["element"],
+         "consequence": "refused", "detail": "MakeConvexHull only applies to .obj"}
+        for f in findings if f["code"] == "C009"
+    ]  # fmt: skip
+    return {
+        "version": 1,
+        "summary": {"files": 1, "error": 7, "warning": 1, "info": 2},
+        "passed": False,
+        "models": {"r.urdf": None},
+        "findings": findings,
+        "scene": {"r.urdf": {"version": 1, "robot": "r", "q": {}, "links": links, "joints": [],
+                             "meshes": [], "notes": []}},
+        "matrix": [
+            {"path": "r.urdf", "target": "drake", "label": "Drake", "basis": "engine",
+             "predicted": {"outcome": "refused", "findings": deciding}, "confirmed": None},
+            {"path": "r.urdf", "target": "mujoco", "label": "MuJoCo", "basis": "engine",
+             "predicted": {"outcome": "loads", "findings": deciding[:1]}, "confirmed": None},
+        ],
+    }  # fmt: skip
+
+
+def _filter(driver: Any, name: str, value: str) -> None:
+    box = driver.find_element(By.ID, f"filter-{name}")
+    if box.tag_name == "select":
+        driver.execute_script(
+            "arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'))",
+            box,
+            value,
+        )
+    else:
+        box.clear()
+        if value:
+            box.send_keys(value)
+
+
+def test_findings_are_grouped_by_rule_folded_and_filtered(driver: Any, base_url: str) -> None:
+    driver.get(f"{base_url}/")
+    WebDriverWait(driver, 20).until(
+        lambda d: d.execute_script("return document.readyState") == "complete"
+    )
+    driver.execute_script(STUB_FETCH, _grouped_answer())
+    driver.find_element(By.XPATH, "//input[@name='mode'][@value='paste']/parent::label").click()
+    driver.find_element(By.ID, "urdf-text").send_keys(TWO_ROOTS)
+    driver.find_element(By.ID, "submit").click()
+    WebDriverWait(driver, 30).until(lambda d: d.find_element(By.ID, "results").is_displayed())
+
+    # one group per rule, errors first, each with its count; three rows, then "Show 4 more"
+    groups = {g["code"]: g for g in rules(driver)}
+    assert [g["code"] for g in rules(driver)] == ["C009", "G005", "J003"]
+    assert groups["C009"]["count"] == "×7" and groups["C009"]["visible"] == 3
+    assert groups["C009"]["more"] == "Show 4 more" and groups["C009"]["moreExpanded"] == "false"
+    assert groups["J003"]["count"] == "×2" and groups["J003"]["visible"] == 2
+    assert groups["J003"]["more"] is None
+    found = rows(driver)
+    assert len(found) == 10 and sum(r["shown"] for r in found) == 6
+    c009 = [r for r in found if r["code"] == "C009"]
+    assert all(r["fix"] == "Convert the mesh to OBJ." for r in c009)  # said once, in the header
+    assert (
+        driver.execute_script(
+            "return document.querySelectorAll('#findings tr.finding .fix').length"
+        )
+        == 3
+    )  # their own: J003 has two different ones, G005 is one finding
+    assert c009[0]["href"] == "/rules/C009" and c009[0]["name"] == "unsupported-mesh-format"
+    count = driver.find_element(By.ID, "findings-count").text
+    assert "10 findings in 3 rules" in count and "6 shown" in count
+
+    more = driver.find_element(By.CSS_SELECTOR, "#rule-error-C009 button.more")
+    more.click()
+    assert {g["code"]: g for g in rules(driver)}["C009"]["visible"] == 7
+    assert more.get_attribute("aria-expanded") == "true" and more.text == "Show fewer"
+    more.click()
+    assert {g["code"]: g for g in rules(driver)}["C009"]["visible"] == 3
+    fold = driver.find_element(By.CSS_SELECTOR, "#rule-error-C009 button.rule-toggle")
+    fold.click()
+    after = {g["code"]: g for g in rules(driver)}["C009"]
+    assert after["expanded"] == "false" and after["visible"] == 0 and after["more"] is None
+    fold.click()
+    driver.find_element(By.ID, "findings-expand").click()  # "Show all"
+    assert all(g["visible"] == g["rows"] for g in rules(driver))
+    driver.find_element(By.ID, "findings-expand").click()
+
+    # every filter has a label
+    for name in ("severity", "rule", "link", "text"):
+        label = driver.find_element(By.CSS_SELECTOR, f"label[for='filter-{name}']")
+        assert label.text
+    # by severity, by rule (the only rule left shows whole), by link, by text
+    _filter(driver, "severity", "info")
+    assert [g["code"] for g in rules(driver) if g["shown"]] == ["J003"]
+    assert "2 of 10 findings match" in driver.find_element(By.ID, "findings-count").text
+    _filter(driver, "severity", "")
+    _filter(driver, "rule", "C009")
+    shown = [g for g in rules(driver) if g["shown"]]
+    assert [g["code"] for g in shown] == ["C009"] and shown[0]["visible"] == 7
+    _filter(driver, "rule", "")
+    _filter(driver, "link", "part1")
+    assert sorted(r["code"] for r in rows(driver) if r["shown"]) == ["C009", "J003"]
+    _filter(driver, "link", "")
+    _filter(driver, "text", "M6.STL")
+    assert [(r["code"], r["line"]) for r in rows(driver) if r["shown"]] == [("C009", "16")]
+    assert {g["code"]: g["count"] for g in rules(driver) if g["shown"]} == {"C009": "×1 of 7"}
+    _filter(driver, "text", "nothing like this")
+    assert driver.find_element(By.ID, "no-match").is_displayed()
+    driver.find_element(By.ID, "filter-clear").click()
+    assert sum(r["shown"] for r in rows(driver)) == 6
+    assert not driver.find_element(By.ID, "filter-clear").is_displayed()
+
+    # the simulators group their deciding findings by rule; a group links to its rule
+    drake = {r["target"]: r for r in matrix_rows(driver)}["drake"]
+    assert [link["text"] for link in drake["links"]] == ["C009 ×7"]
+    assert drake["links"][0]["row"] == "rule-error-C009"
+    mujoco = {r["target"]: r for r in matrix_rows(driver)}["mujoco"]
+    assert [link["text"] for link in mujoco["links"]] == ["C009 line 10"]
+    _filter(driver, "severity", "info")  # hides C009: following the link clears the filters
+    driver.find_element(By.CSS_SELECTOR, "#matrix a[data-finding='rule-error-C009']").click()
+    WebDriverWait(driver, 5).until(
+        lambda d: d.find_elements(By.CSS_SELECTOR, "#rule-error-C009 tr.rule-row.highlight")
+    )
+    assert driver.find_element(By.ID, "filter-severity").get_attribute("value") == ""
+    assert driver.find_element(By.CSS_SELECTOR, "#rule-error-C009 tr.rule-row").is_displayed()
+
+    # a finding past the first rows, reached from the selected link's box, is shown
+    driver.execute_script(
+        "document.dispatchEvent(new CustomEvent('urdflint:select',"
+        " {detail: {link: 'part5', from: 'outline'}}))"
+    )
+    link = driver.find_element(By.CSS_SELECTOR, "#picked a.finding-link")
+    target = link.get_attribute("data-finding")
+    assert not driver.find_element(By.ID, target).is_displayed()
+    link.click()
+    WebDriverWait(driver, 5).until(lambda d: d.find_element(By.ID, target).is_displayed())
+    assert "highlight" in driver.find_element(By.ID, target).get_attribute("class")
+
+
 @pytest.mark.skipif(importlib.util.find_spec("pinocchio") is None, reason="needs pinocchio")
 def test_confirm_in_the_installed_engines(driver: Any, tmp_path: Path) -> None:
     """A server started with confirm allowed offers the box; the engine's verdict is shown."""
@@ -582,10 +781,12 @@ def test_confirm_in_the_installed_engines(driver: Any, tmp_path: Path) -> None:
         WebDriverWait(driver, 120).until(
             lambda d: d.find_element(By.ID, "matrix-card").is_displayed()
         )
-        shown = matrix_rows(driver)
-        assert [row["target"] for row in shown] == ["pinocchio"]
-        assert shown[0]["confirmed"] in {"loads", "changes", "refused", "crashes"}
-        assert shown[0]["engine"].startswith("pinocchio")
+        # every target has a row (the matrix is a display); the one checked is marked
+        shown = {row["target"]: row for row in matrix_rows(driver)}
+        assert [t for t, row in shown.items() if row["selected"] == "true"] == ["pinocchio"]
+        assert shown["pinocchio"]["confirmed"] in {"loads", "changes", "refused", "crashes"}
+        assert shown["pinocchio"]["engine"].startswith("pinocchio")
+        assert "not checked" in shown["mujoco"]["note"]
         codes = {r["code"] for r in rows(driver)}
         assert "E001" in codes  # what Pinocchio said, in the findings
 

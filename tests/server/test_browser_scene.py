@@ -2,19 +2,24 @@
 
 WebGL is SwiftShader's (software). Pictures are judged tolerantly, by counting pixel
 colours in the canvas and in small regions around points the page projects for us
-(``window.urdflintView.where``): the fixture's gripper has a tensor 1000x too large, so
-its inertia box (drawn in the warning's orange) covers a large part of the view and goes
-away with the boxes; the upper arm's centre of mass is an orange dot above its bar.
-Screenshots go to the test's folder, and also to ``$URDFLINT_SCREENSHOTS`` when set.
-Skipped like ``test_browser.py`` without Chromium; the corpus test needs the corpus.
+(``window.urdflintView.where``). The view shows the robot first: its visuals in their own
+colours, framed; the overlays (centres of mass, inertia boxes, joint axes, finding colours)
+belong to the selected link, or to every flagged (or every) link on demand. On demand, the
+fixture's gripper, whose tensor is 1000x too large, has an inertia box (drawn in the
+warning's orange) over a large part of the view; the upper arm's centre of mass is an
+orange dot above its bar. PR2 and TIAGo (from the corpus, their meshes uploaded as a zip)
+must be recognisable: robot pixels a good share of the canvas, overlay colours a small
+share of them. Screenshots go to the test's folder, and also to ``$URDFLINT_SCREENSHOTS``
+when set. Skipped like ``test_browser.py`` without Chromium; the corpus tests need the
+corpus.
 """
 
 from __future__ import annotations
 
 import io
 import os
+import re
 import time
-import zipfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -33,7 +38,15 @@ from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.support.ui import WebDriverWait  # noqa: E402
 
-from tests.server.browsing import CHROMEDRIVER, CHROMIUM, check, new_driver, rows  # noqa: E402
+from tests.server.browsing import (  # noqa: E402
+    CHROMEDRIVER,
+    CHROMIUM,
+    check,
+    mesh_zip,
+    new_driver,
+    rows,
+    rules,
+)
 
 pytestmark = pytest.mark.skipif(
     CHROMIUM is None or CHROMEDRIVER is None,
@@ -43,7 +56,10 @@ pytestmark = pytest.mark.skipif(
 VIEW = FIXTURES / "models" / "inertia_view.urdf"
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"
 BIG = CORPUS / "pr2"  # 88 links, 37 meshes (STL and Collada) in meshes/pr2_description
+REAL = ("pr2", "tiago")  # robots with meshes and a package_map.json in the corpus
 BACKGROUND = (248, 250, 252)  # the view's clear colour, #f8fafc
+FLOOR = ((0xC9, 0xCE, 0xD6), (0xE4, 0xE7, 0xEC))  # the floor grid's two line colours
+OVERLAYS = ("com", "inertia", "axes", "findings")  # the overlay toggles
 
 
 @pytest.fixture(scope="module")
@@ -172,9 +188,16 @@ def test_the_oversized_inertia_box_and_the_com_outside_show(
     state = drawn(driver, base_url, VIEW)
     assert state["state"] == "ready" and state["links"] == "6"
     assert driver.execute_script("return window.urdflintView !== undefined")
-    boxes = driver.find_element(By.CSS_SELECTOR, "[data-show='inertia']")
-    assert boxes.get_attribute("value") == "all"  # a small robot: every box
+    # the robot first: no overlay until a link is selected or they are asked for
+    scope = driver.find_element(By.CSS_SELECTOR, "[data-show='overlays']")
+    assert scope.get_attribute("value") == "selected"
+    assert overlays(driver) == {"com": 0, "inertia": 0, "axes": 0, "findings": 0}
+    plain, _ = picture(driver, "inertia_view_default", tmp_path)
+    assert warm(plain).mean() < 0.001  # neutral grey, not the findings' orange
+    assert robot(plain).mean() > 0.04  # framed on the visuals: a thin arm, but not a dot
 
+    show(driver, "overlays", "all")  # every link's overlays
+    assert overlays(driver) == {"com": 5, "inertia": 5, "axes": 3, "findings": 2}
     pixels, rect = picture(driver, "inertia_view", tmp_path)
     height, width, _ = pixels.shape
     assert width > 600 and height > 400
@@ -194,7 +217,7 @@ def test_the_oversized_inertia_box_and_the_com_outside_show(
     assert warm(around(pixels, where(driver, "gripper", "visual", rect))).all()
 
     # without the boxes, the orange is the two links with findings, and nothing else
-    show(driver, "inertia", "none")
+    show(driver, "inertia", False)
     bare, rect = picture(driver, "inertia_view_no_boxes", tmp_path)
     assert warm(bare).mean() < tinted / 5
     assert warm(around(bare, where(driver, "gripper", "visual", rect))).all()
@@ -207,14 +230,15 @@ def test_the_oversized_inertia_box_and_the_com_outside_show(
     assert warm(grey).mean() < 0.001
     assert around(grey, where(driver, "upper_arm", "com", rect)).sum(axis=2).min() < 3 * 90
     show(driver, "findings", True)
-    show(driver, "inertia", "all")
+    show(driver, "inertia", True)
+    show(driver, "overlays", "selected")
+    assert overlays(driver) == {"com": 0, "inertia": 0, "axes": 0, "findings": 0}
     assert refused(driver) == []
 
 
 def test_picking_a_link_and_a_finding_row_select_the_same_link(driver: Any, base_url: str) -> None:
     assert drawn(driver, base_url, VIEW)["state"] == "ready"
-    show(driver, "inertia", "none")  # click the links themselves
-    element = canvas(driver)
+    element = canvas(driver)  # no overlay yet: the links themselves are clicked
     rect = driver.execute_script(
         "const r = arguments[0].getBoundingClientRect();"
         "return {x: r.left, y: r.top, w: r.width, h: r.height};",
@@ -229,6 +253,8 @@ def test_picking_a_link_and_a_finding_row_select_the_same_link(driver: Any, base
     assert found["outline"] == "gripper" and found["rows"] == ["I007"]
     assert "gripper" in found["picked"] and "I007" in found["picked"]
     assert "1.9 × 1.9 × 1.9 m" in found["picked"]  # the inertia box, in words too
+    # the selected link's overlays, and only its: its box, its centre of mass, its colour
+    assert overlays(driver) == {"com": 1, "inertia": 1, "axes": 0, "findings": 1}
 
     # a finding row selects its link everywhere
     row = next(r for r in rows(driver) if r["code"] == "I008")
@@ -298,9 +324,16 @@ def test_the_broken_example_renders(driver: Any, base_url: str, tmp_path: Path) 
     assert state["state"] == "ready" and state["links"] == "4"
     print(f"broken_arm: drawn {state['rendered']} ms after the response")
     assert 0 < int(state["rendered"]) < 10_000
-    # only collisions on the upper arm: they are shown, in the error's red
-    assert driver.find_element(By.CSS_SELECTOR, "[data-show='collision']").is_selected()
+    # only collisions on the upper arm: they stand in for its visual, in the collision teal
+    assert not driver.find_element(By.CSS_SELECTOR, "[data-show='collision']").is_selected()
     pixels, _ = picture(driver, "broken_arm_3d", tmp_path)
+    r, g, b = pixels[..., 0], pixels[..., 1], pixels[..., 2]
+    teal = (g - r > 40) & (b - r > 30) & (r < 200)
+    assert teal.mean() > 0.005
+    # selected, the upper arm takes its worst finding's colour: the error's red
+    driver.find_element(By.CSS_SELECTOR, "#outline li[data-link='upper_arm'] .name").click()
+    WebDriverWait(driver, 5).until(lambda d: selected(d)["view"] == "upper_arm")
+    pixels, _ = picture(driver, "broken_arm_3d_selected", tmp_path)
     r, g, b = pixels[..., 0], pixels[..., 1], pixels[..., 2]
     red = (r > 150) & (r - g > 60) & (g - b < 40) & (g < 150)
     assert red.mean() > 0.005
@@ -355,41 +388,152 @@ def test_at_phone_width_the_findings_reflow(driver: Any, base_url: str, tmp_path
         driver.set_window_size(1400, 1000)
 
 
-# -- a big robot with meshes from a zip -------------------------------------------------------
+# -- real robots with meshes from a zip --------------------------------------------------------
 
 
 @pytest.fixture(scope="module")
-def big_zip(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    if not (BIG / "model.urdf").is_file():
-        pytest.skip("needs the corpus")
-    target = tmp_path_factory.mktemp("zips") / "pr2_meshes.zip"
-    meshes = BIG / "meshes"
-    with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as zf:
-        for path in sorted(meshes.rglob("*")):
-            if path.is_file():
-                zf.write(path, path.relative_to(meshes).as_posix())
-    return target
+def zips(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """The corpus robots' meshes, zipped as a reader would upload them (made when asked)."""
+    folder = tmp_path_factory.mktemp("zips")
+
+    class Zips(dict[str, Path]):
+        def __missing__(self, name: str) -> Path:
+            if not (CORPUS / name / "model.urdf").is_file():
+                pytest.skip("needs the corpus")
+            self[name] = mesh_zip(CORPUS / name, folder / f"{name}_meshes.zip")
+            return self[name]
+
+    return Zips()
+
+
+def robot(pixels: Any) -> Any:
+    """The robot's pixels: neither the background nor the floor's lines."""
+    floor = np.zeros(pixels.shape[:2], dtype=bool)
+    for colour in FLOOR:
+        floor |= np.abs(pixels - colour).sum(axis=2) < 4
+    return (np.abs(pixels - BACKGROUND).sum(axis=2) >= 8) & ~floor
+
+
+def overlay_colours(pixels: Any) -> dict[str, float]:
+    """Shares of the robot's pixels in the overlays' colours: ``warm``, the findings'
+    orange and red (strong: a robot's own orange or red parts count too); ``purple``, the
+    inertia boxes' colour; ``com``, the centres of mass' dark blue between white."""
+    r, g, b = pixels[..., 0], pixels[..., 1], pixels[..., 2]
+    mask = robot(pixels)
+    total = max(int(mask.sum()), 1)
+    strong = mask & (r - b > 60) & (r > g + 40)
+    purple = mask & (r > g + 15) & (b > g + 40)
+    return {"warm": strong.sum() / total, "purple": purple.sum() / total}
+
+
+def overlays(driver: Any) -> dict[str, int]:
+    """How many of each overlay the view draws (its ``data-overlays``)."""
+    text = driver.find_element(By.ID, "view").get_attribute("data-overlays") or ""
+    return {kind: int(n) for kind, n in (part.split() for part in text.split(", ") if part)}
+
+
+def framing(pixels: Any) -> dict[str, float]:
+    """The robot's share of the canvas, and the share of the canvas's width or height its
+    pixels span (whichever is larger; from the 1st to the 99th percentile, so that a few
+    stray pixels, such as the view's rounded corners, do not count)."""
+    mask = robot(pixels)
+    ys, xs = np.nonzero(mask)
+    if not len(xs):
+        return {"share": 0.0, "span": 0.0}
+    wide = (np.percentile(xs, 99) - np.percentile(xs, 1)) / mask.shape[1]
+    tall = (np.percentile(ys, 99) - np.percentile(ys, 1)) / mask.shape[0]
+    return {"share": float(mask.mean()), "span": float(max(wide, tall))}
+
+
+def click_robot(driver: Any, pixels: Any) -> None:
+    """Click the robot's pixel nearest its pixels' centroid (a link of its body)."""
+    element = canvas(driver)
+    size = driver.execute_script(
+        "const r = arguments[0].getBoundingClientRect(); return [r.width, r.height];", element
+    )
+    ys, xs = np.nonzero(robot(pixels))
+    cy, cx = ys.mean(), xs.mean()
+    nearest = int(np.argmin((ys - cy) ** 2 + (xs - cx) ** 2))
+    x, y = int(xs[nearest]), int(ys[nearest])
+    ActionChains(driver).move_to_element_with_offset(
+        element, x - size[0] / 2, y - size[1] / 2
+    ).click().perform()
+
+
+@pytest.mark.parametrize("name", REAL)
+def test_a_real_robot_is_shown_first(
+    driver: Any, base_url: str, zips: dict[str, Path], name: str, tmp_path: Path
+) -> None:
+    """PR2 and TIAGo, at 1400 and 390 px: recognisable (framed on the visuals, no
+    overlay) by default; a link clicked gets its overlays; every flagged link's on demand."""
+    state = drawn(driver, base_url, CORPUS / name / "model.urdf", meshes=zips[name])
+    assert state["state"] == "ready" and int(state["triangles"]) > 10_000
+    assert overlays(driver) == {"com": 0, "inertia": 0, "axes": 0, "findings": 0}
+    try:
+        for width in (1400, 390):
+            driver.set_window_size(width, 1000)
+            time.sleep(0.5)  # the view takes its new size and frames the robot again
+            pixels, _ = picture(driver, f"{name}_{width}", tmp_path)
+            frame, colours = framing(pixels), overlay_colours(pixels)
+            print(f"{name} at {width} px: robot {frame['share']:.1%} of the canvas, spanning"
+                  f" {frame['span']:.0%}; orange/red {colours['warm']:.2%}, inertia purple"
+                  f" {colours['purple']:.2%} of the robot")  # fmt: skip
+            assert frame["share"] > 0.12 and frame["span"] > 0.6  # framed, not tiny
+            # a robot's own orange (TIAGo's band) or red parts (PR2's) are a small share
+            assert colours["warm"] < 0.10 and colours["purple"] < 0.01
+            # nothing of what the overlays draw is there: turning them off changes nothing
+            for kind in OVERLAYS:
+                show(driver, kind, False)
+            bare, _ = picture(driver, f"{name}_{width}_bare", tmp_path)
+            changed = (np.abs(bare - pixels).sum(axis=2) > 30).sum() / robot(pixels).sum()
+            assert changed < 0.005, changed
+            for kind in OVERLAYS:
+                show(driver, kind, True)
+            # on demand, every flagged link's: the same measure sees them
+            show(driver, "overlays", "flagged")
+            flagged, _ = picture(driver, f"{name}_{width}_flagged", tmp_path)
+            counted = overlays(driver)
+            assert counted["findings"] > 10 and counted["inertia"] > 5
+            assert overlay_colours(flagged)["warm"] > max(0.3, 3 * colours["warm"])
+            show(driver, "overlays", "selected")
+            # a click on the robot selects a link: its overlays, the robot still whole
+            click_robot(driver, pixels)
+            WebDriverWait(driver, 5).until(lambda d: selected(d)["view"] != "")
+            chosen = selected(driver)["view"]
+            counted = overlays(driver)
+            assert counted["findings"] <= 1 and counted["com"] <= 1 and counted["inertia"] <= 1
+            picked, _ = picture(driver, f"{name}_{width}_selected_canvas", tmp_path)
+            assert framing(picked)["share"] > 0.12
+            card = driver.find_element(By.ID, "view-card")
+            driver.execute_script("arguments[0].scrollIntoView({block: 'start'})", card)
+            time.sleep(0.3)
+            keep(card.screenshot_as_png, f"{name}_{width}_selected", tmp_path)
+            assert chosen in driver.find_element(By.ID, "picked").text
+            driver.execute_script(
+                "document.dispatchEvent(new CustomEvent('urdflint:select',"
+                " {detail: {link: null, from: 'scene'}}))"
+            )
+    finally:
+        driver.set_window_size(1400, 1000)
 
 
 @pytest.mark.skipif(not (BIG / "model.urdf").is_file(), reason="needs the corpus")
 def test_a_big_robot_with_meshes_from_a_zip(
-    driver: Any, base_url: str, big_zip: Path, tmp_path: Path
+    driver: Any, base_url: str, zips: dict[str, Path], tmp_path: Path
 ) -> None:
     driver.get_log("browser")
-    state = drawn(driver, base_url, BIG / "model.urdf", meshes=big_zip)
+    state = drawn(driver, base_url, BIG / "model.urdf", meshes=zips["pr2"])
     assert state["state"] == "ready" and state["links"] == "88"
     assert int(state["triangles"]) > 10_000  # the meshes came from the zip
     print(f"pr2: {state['triangles']} triangles drawn {state['rendered']} ms after the response")
     assert 0 < int(state["rendered"]) < 15_000  # 2-core CI in software GL; ~1 s here
     notes = driver.find_element(By.ID, "view-notes")
     assert not notes.is_displayed() or "not shown" not in notes.text  # every mesh was found
-    # past 15 links only the flagged boxes show: those of the I findings' links
-    assert (
-        driver.find_element(By.CSS_SELECTOR, "[data-show='inertia']").get_attribute("value")
-        == "flagged"
-    )
+    # on demand, the flagged boxes: those of the links with inertia findings
+    show(driver, "overlays", "flagged")
     flagged = {r["element"].split("'")[1] for r in rows(driver) if r["code"] == "I007"}
     assert flagged
+    assert overlays(driver)["inertia"] >= len(flagged)
     pixels, rect = picture(driver, "pr2", tmp_path)
     assert (np.abs(pixels - BACKGROUND).sum(axis=2) < 8).mean() < 0.95
     for name in sorted(flagged)[:3]:
@@ -408,3 +552,75 @@ def test_a_big_robot_with_meshes_from_a_zip(
     assert scale >= 0.79
     assert driver.find_element(By.ID, "zoom-note").is_displayed()
     assert refused(driver) == []
+
+
+def page_height(driver: Any) -> int:
+    """The page's full height, every lazily laid out card laid out (scrolled through)."""
+    height = 0
+    for _ in range(20):
+        driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
+        time.sleep(0.2)
+        now = int(driver.execute_script("return document.documentElement.scrollHeight"))
+        if now == height:
+            break
+        height = now
+    driver.execute_script("window.scrollTo(0, 0)")
+    return height
+
+
+@pytest.mark.skipif(not (BIG / "model.urdf").is_file(), reason="needs the corpus")
+def test_a_big_robot_s_page_is_a_few_screens(
+    driver: Any, base_url: str, zips: dict[str, Path], tmp_path: Path
+) -> None:
+    """PR2's 238 findings: by rule, a few rows each; the page a few screens long at 1400 px;
+    no sideways scroll at 390 px, even with a long mesh path in the selected link's box."""
+    assert drawn(driver, base_url, BIG / "model.urdf", meshes=zips["pr2"])["state"] == "ready"
+    driver.execute_script("document.querySelector('details.more').open = false")  # as it was
+    height = page_height(driver)
+    found = rows(driver)
+    groups = {g["code"]: g for g in rules(driver)}
+    print(f"pr2: the page is {height} px tall at 1400x1000; {len(found)} findings in"
+          f" {len(groups)} rules, {sum(r['shown'] for r in found)} rows shown")  # fmt: skip
+    assert height < 5000
+    assert len(found) > 200 and len(groups) > 10
+    assert groups["C009"]["count"] == f"×{groups['C009']['rows']}" and groups["C009"]["rows"] > 30
+    assert (
+        groups["C009"]["more"] == f"Show {groups['C009']['rows'] - groups['C009']['visible']} more"
+    )
+    assert all(1 <= g["visible"] <= 3 for g in groups.values())
+    drake = driver.execute_script(
+        "return Array.from(document.querySelectorAll("
+        "'#matrix tr[data-target=\"drake\"] td.why a.finding-link'), (a) => a.textContent)"
+    )
+    assert f"C009 ×{groups['C009']['rows']}" in drake
+
+    # a link whose finding names a long mesh path, selected, at phone width
+    def longest(message: str) -> int:
+        return max(len(word) for word in re.split(r"\s+", message))
+
+    linked = [r for r in found if r["link"]]
+    choice = max(linked, key=lambda r: longest(r["message"]))
+    assert longest(choice["message"]) > 50
+    driver.set_window_size(390, 900)
+    try:
+        time.sleep(0.4)
+        driver.execute_script(
+            "document.dispatchEvent(new CustomEvent('urdflint:select',"
+            " {detail: {link: arguments[0], from: 'outline'}}))",
+            choice["link"],
+        )
+        box = driver.find_element(By.ID, "picked")
+        WebDriverWait(driver, 5).until(lambda d: box.is_displayed())
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", box)
+        time.sleep(0.3)
+        widths = driver.execute_script("""
+          const page = document.documentElement;
+          return [page.scrollWidth, page.clientWidth,
+                  document.getElementById('picked').getBoundingClientRect().right];""")
+        print(
+            f"pr2 at 390 px, '{choice['link']}' selected: page {widths[0]} px wide in {widths[1]}"
+        )
+        assert widths[0] <= widths[1] and widths[2] <= widths[1]
+        keep(driver.get_screenshot_as_png(), "pr2_phone_selected", tmp_path)
+    finally:
+        driver.set_window_size(1400, 1000)
