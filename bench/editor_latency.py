@@ -203,15 +203,15 @@ def main() -> int:
     if args.emacs_eval:
         base["B_EVAL"] = args.emacs_eval
 
+    load = loadavg()
     reports: dict[str, dict[str, dict[str, Any]]] = {}
     with tempfile.TemporaryDirectory() as tmp_name:
         tmp = Path(tmp_name)
-        for editor in editors:
-            cache = tmp / f"{editor}-cache"
-            runs = reports.setdefault(editor, {})
-            for name, cache_dir in SESSIONS:
+        for name, cache_dir in SESSIONS:  # the editors in turn: alike under a changing load
+            for editor in editors:
                 print(f"{editor}: {name} ...", file=sys.stderr, flush=True)
-                where = None if cache_dir is None else cache
+                where = None if cache_dir is None else tmp / f"{editor}-cache"
+                runs = reports.setdefault(editor, {})
                 runs[name] = session(editor, base, where, tmp, name.replace(" ", "-"))
     if args.json:
         args.json.write_text(json.dumps(reports, indent=1))
@@ -220,7 +220,12 @@ def main() -> int:
         f"{original.strip()} -> {planted.strip()} ({CODE}); {args.rounds} rounds; ms"
     )
     print_table(reports)
+    print(f"load average (1, 5, 15 min): before {load}, after {loadavg()}; {os.cpu_count()} CPUs")
     return 0
+
+
+def loadavg() -> str:
+    return " ".join(f"{x:.1f}" for x in os.getloadavg())
 
 
 def median_max(times: list[float]) -> str:
