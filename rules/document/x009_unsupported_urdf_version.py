@@ -17,7 +17,9 @@ whole numbers), and reports:
   urdfdom reads it as 1.0, but urdf_parser_py accepts only the exact string
   `"1.0"`.
 
-A robot without a `version` attribute is URDF 1.0 and is not reported.
+A robot without a `version` attribute is URDF 1.0 and is not reported. The
+version in the XML declaration (`<?xml version="0.0"?>`) is not a URDF
+version: X001 reports it, as a warning, since TinyXML and TinyXML2 ignore it.
 
 ## Why is this bad?
 urdfdom checks the version before anything else and refuses the whole model

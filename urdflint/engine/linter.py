@@ -27,7 +27,9 @@ log = logging.getLogger(__name__)
 
 LIBRARY_FAMILIES = frozenset({"X", "U"})  # what a xacro library file (no <link>) gets
 # A file that is not well-formed is checked on the tree libxml2 recovers: its findings say so.
-# Pinocchio reads the file itself, not that tree, so the physics family does not run.
+# Pinocchio reads the file itself, not that tree, so the physics family does not run. A file
+# whose XML declaration or stray leading text was only blanked out (doc.repairs) is not
+# recovered: its tree is the one TinyXML reads, so every rule runs and nothing is marked.
 RECOVERED = " (from the part of the file that could be read after the X001 error)"
 RECOVERED_SKIPS = frozenset({"P"})
 EXTRAS = optional.EXTRAS

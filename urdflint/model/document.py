@@ -2,8 +2,10 @@
 
 One parse per file (:mod:`urdflint.model.parsing`: hardened, never expands entities
 or loads a DTD; a document with a DOCTYPE or entity references is refused (X002),
-never expanded). A file that is not well-formed XML still gets its rules run on the
-tree libxml2 recovers, when that is a ``<robot>`` (``Document.recovered``).
+never expanded). An XML declaration or stray text that the TinyXML-based consumers read
+past is blanked out first (``Document.repairs``: the tree is exact, nothing is skipped). A
+file that is still not well-formed XML gets its rules run on the tree libxml2 recovers,
+when that is a ``<robot>`` (``Document.recovered``).
 """
 
 from __future__ import annotations
@@ -160,6 +162,8 @@ class Document:
     ``requires_robot=False`` run, unless the tree libxml2 recovered from a file
     that is not well-formed is a ``<robot>``: then ``recovered`` is true, ``robot``
     is that tree and the engine runs the rules on it too, marking their findings.
+    ``repairs`` are what was blanked out before parsing (an XML declaration or stray text
+    that TinyXML and TinyXML2 read past, reported by X001); a repaired document is ``ok``.
     """
 
     def __init__(
@@ -186,6 +190,7 @@ class Document:
         self.root: etree._Element | None = None
         self.library = library  # an included xacro file: only document-level rules run
         self.recovered = False  # root is libxml2's recovery of a file with an X001 problem
+        self.repairs: tuple[XmlProblem, ...] = ()  # blanked out before parsing (X001)
         self.undeclared_prefixes: tuple[str, ...] = ()  # used without xmlns: (X012)
         self.default_namespace: str | None = None  # <robot xmlns="..."> (X002 warning)
         if problem is None:
@@ -198,10 +203,12 @@ class Document:
         self.root, self.problem, self.recovered = parsed.root, parsed.problem, parsed.recovered
         self.undeclared_prefixes = parsed.undeclared
         self.default_namespace = parsed.default_namespace
+        self.repairs = parsed.repairs
 
     @property
     def ok(self) -> bool:
-        """A usable ``<robot>`` from a well-formed file (not a recovered tree)."""
+        """A usable ``<robot>`` from a well-formed file, or from one whose XML declaration or
+        stray leading text was blanked out (``repairs``); not a recovered tree."""
         return self.root is not None and not self.recovered
 
     @property

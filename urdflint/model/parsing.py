@@ -10,6 +10,11 @@ consumers (urdfdom, PyBullet, MuJoCo, Drake, Pinocchio) read, without hiding it:
   number stays) and the file is parsed again; X012 reports the prefix;
 - a default namespace on ``<robot>`` (``xmlns="..."``) is taken off the elements in
   it, so the rules see ``<link>``, not ``{uri}link``; X002 reports it as a warning;
+- an XML declaration TinyXML and TinyXML2 read past (a version other than 1.x, a
+  declaration after blank lines or after other content) and stray text before the root
+  element are blanked out, every newline kept, and the file is parsed again: the tree is
+  the one the TinyXML-based consumers read, nothing in it guessed. Each such repair is an
+  X001 finding (``Parsed.repairs``) whose severity follows what those consumers do;
 - a file that is not well-formed is X001, and when libxml2's recovery
   (``recover=True``, the parser otherwise unchanged) still yields a ``<robot>``, that
   tree is checked too (``Parsed.recovered``);
@@ -19,11 +24,12 @@ consumers (urdfdom, PyBullet, MuJoCo, Drake, Pinocchio) read, without hiding it:
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from lxml import etree
 
-from urdflint.model.positions import TAG_END_RE
+from urdflint.model.finding import Severity
+from urdflint.model.positions import TAG_END_RE, Lines
 
 MAX_BYTES = 64 * 2**20
 XACRO_NS = "http://www.ros.org/wiki/xacro"
@@ -33,6 +39,16 @@ _UNDECLARED = etree.ErrorTypes.NS_ERR_UNDEFINED_NAMESPACE
 _PREFIX_RE = re.compile(r"Namespace prefix ([A-Za-z_][\w.-]*) (?:for \S+ )?on \S+ is not defined")
 _PROLOG_RE = re.compile(rb"(?:\s+|<\?.*?\?>|<!--.*?-->)*", re.S)
 _ROOT_RE = re.compile(rb"<([A-Za-z_][^\s/>]*)")
+_DECLARATION_RE = re.compile(rb"<\?xml(?=[\s?])[^<]*?\?>", re.I)
+_PIS_RE = re.compile(rb"(?:\s+|<\?[^<]*?\?>)*")  # what TinyXML2 allows before a declaration
+_STRAY_RE = re.compile(rb"[^<]+")
+_NOT_NEWLINE_RE = re.compile(rb"[^\r\n]")
+MAX_REPAIRS = 16  # declarations and stray texts blanked out in one file
+
+# who reads what the repairs take out (observed with check_urdf 3.0.1, PyBullet, Pinocchio)
+_TINYXML_BOTH = "TinyXML and TinyXML2 (urdfdom, PyBullet, Pinocchio, Gazebo)"
+_TINYXML2 = "TinyXML2 (urdfdom 4 and later, PyBullet, Pinocchio, Gazebo, Drake, MuJoCo)"
+_TINYXML1 = "TinyXML (urdfdom 3, check_urdf)"
 
 
 @dataclass(frozen=True, slots=True)
@@ -44,6 +60,7 @@ class XmlProblem:
     line: int = 1
     column: int = 1
     path: str | None = None  # xacro: the (shown) file the problem is in, when not the main file
+    severity: Severity | None = None  # a repair's: how the TinyXML-based consumers take it
 
 
 @dataclass(frozen=True, slots=True)
@@ -52,6 +69,8 @@ class Parsed:
 
     ``root`` is set for a usable ``<robot>``, and also beside an X001 ``problem`` when
     ``recovered`` (the tree libxml2 rebuilt from a file that is not well-formed).
+    ``repairs`` are the X001 findings for what was blanked out before the tree was read
+    (kept only when that gave a ``<robot>``); the tree itself is then exact.
     """
 
     root: etree._Element | None = None
@@ -59,6 +78,7 @@ class Parsed:
     recovered: bool = False
     undeclared: tuple[str, ...] = ()  # namespace prefixes used without a declaration
     default_namespace: str | None = None  # the xmlns="..." of <robot>, taken off the tree
+    repairs: tuple[XmlProblem, ...] = ()
 
 
 def make_parser(*, recover: bool = False) -> etree.XMLParser:
@@ -101,30 +121,132 @@ def parse(source: bytes) -> Parsed:
                 "X001", f"file is {len(source) / 2**20:.0f} MiB, over the 64 MiB limit"
             )
         )
-    parser = make_parser()
-    try:
-        return _checked(etree.fromstring(source, parser), source)
-    except etree.XMLSyntaxError as exc:
-        if b"<!DOCTYPE" in source or b"<!ENTITY" in source:
-            # e.g. an entity bomb libxml2 stopped: refuse it as a DOCTYPE, not a typo
-            return Parsed(problem=_doctype_problem(source))
-        # the parser's own log: exc.error_log also holds earlier parses of this thread
-        prefixes = _undeclared(parser.error_log)
-        problem = _first_error(parser.error_log)
-        text = _declare(source, prefixes) if prefixes else None
-        if problem is None and text is not None:
-            again = make_parser()
-            try:
-                return _checked(etree.fromstring(text, again), source, prefixes)
-            except etree.XMLSyntaxError:
-                problem = _first_error(again.error_log)
-        problem = problem or _exception_problem(exc)
-        if not _after_root_tag(source, problem):
-            # in or before the root's start tag: not even the robot's name can be trusted
-            return Parsed(problem=problem)
-        return _recover(text or source, problem, prefixes)
-    except ValueError as exc:  # e.g. an encoding declaration lxml refuses
-        return Parsed(problem=XmlProblem("X001", str(exc)))
+    text = source
+    repairs: list[XmlProblem] = []
+    while True:
+        parser = make_parser()
+        try:
+            return _repaired(source, _checked(etree.fromstring(text, parser), text), repairs)
+        except etree.XMLSyntaxError as exc:
+            if b"<!DOCTYPE" in source or b"<!ENTITY" in source:
+                # e.g. an entity bomb libxml2 stopped: refuse it as a DOCTYPE, not a typo
+                return Parsed(problem=_doctype_problem(source))
+            # the parser's own log: exc.error_log also holds earlier parses of this thread
+            repair = _repair(text, source, parser.error_log) if len(repairs) < MAX_REPAIRS else None
+            if repair is None:
+                return _repaired(source, _not_well_formed(text, parser, exc), repairs)
+            text = repair[0]
+            repairs.append(repair[1])
+        except ValueError as exc:  # e.g. an encoding declaration lxml refuses
+            return Parsed(problem=XmlProblem("X001", str(exc)))
+
+
+def _repaired(source: bytes, parsed: Parsed, repairs: list[XmlProblem]) -> Parsed:
+    """``parsed`` with its repairs, or, when they gave no ``<robot>``, the original file's
+    problem: a repair is reported only with the tree it let urdflint check."""
+    if not repairs:
+        return parsed
+    if parsed.root is None:
+        parser = make_parser()
+        try:
+            etree.fromstring(source, parser)
+        except etree.XMLSyntaxError as exc:
+            return _not_well_formed(source, parser, exc)
+    return replace(parsed, repairs=tuple(repairs))
+
+
+def _not_well_formed(text: bytes, parser: etree.XMLParser, exc: etree.XMLSyntaxError) -> Parsed:
+    """X001 for ``text``, with the tree libxml2 recovers from it when that is sound."""
+    prefixes = _undeclared(parser.error_log)
+    problem = _first_error(parser.error_log)
+    declared = _declare(text, prefixes) if prefixes else None
+    if problem is None and declared is not None:
+        again = make_parser()
+        try:
+            return _checked(etree.fromstring(declared, again), declared, prefixes)
+        except etree.XMLSyntaxError:
+            problem = _first_error(again.error_log)
+    problem = problem or _exception_problem(exc)
+    if not _after_root_tag(text, problem):
+        # in or before the root's start tag: not even the robot's name can be trusted
+        return Parsed(problem=problem)
+    return _recover(declared or text, problem, prefixes)
+
+
+# -- repairs: what TinyXML-based parsers read past, blanked out -------------------------------
+
+
+def _repair(
+    text: bytes, source: bytes, log: etree._ListErrorLog
+) -> tuple[bytes, XmlProblem] | None:
+    """``text`` with the cause of its first error blanked out, and the X001 finding for it;
+    ``None`` when that error is not in an XML declaration or stray text before the root."""
+    error = next((e for e in log if e.type != _UNDECLARED), None)
+    if error is None or "ENCODING" in error.type_name:  # the bytes may not be UTF-8, as
+        return None  # TinyXML2 reads them
+    lines = Lines(text)
+    if not 1 <= error.line <= len(lines.starts):
+        return None
+    start = lines.starts[error.line - 1]
+    characters = text[start : lines.end_of_line(error.line)].decode("utf-8", "replace")
+    at = start + len(characters[: max(error.column, 1) - 1].encode("utf-8"))
+    if error.type == etree.ErrorTypes.ERR_DOCUMENT_EMPTY:
+        offset, span = at, _STRAY_RE.match(text, at)
+        if span is None or span.end() == len(text) or not span.group().strip():
+            return None
+        problem = _stray(Lines(source).position(offset), span.group())
+    else:  # an error inside a declaration, or right after its <?xml
+        offset = text.rfind(b"<?", 0, at + 2)
+        span = _DECLARATION_RE.match(text, offset) if offset >= 0 else None
+        if span is None or at > span.end():
+            return None
+        at_source = Lines(source).position(offset)  # blanked bytes are each a space in text
+        problem = _declaration(source, offset, at_source, error.message or "")
+    blank = _NOT_NEWLINE_RE.sub(b" ", span.group())  # every line break kept
+    return text[:offset] + blank + text[span.end() :], problem
+
+
+def _declaration(source: bytes, start: int, at: tuple[int, int], why: str) -> XmlProblem:
+    """X001 for an XML declaration at ``start``: a warning where TinyXML2 reads past it."""
+    before = source[3 if source.startswith(b"\xef\xbb\xbf") else 0 : start]
+    if not before:
+        said = f"the XML declaration is refused by lxml ({why.strip()}) but ignored by"
+    elif _PIS_RE.fullmatch(before):
+        said = (
+            "the file has a second XML declaration"
+            if _DECLARATION_RE.search(before)
+            else "the XML declaration is not at the very start of the file"
+        ) + ", which lxml and xacro refuse but"
+    else:
+        root = _root_start(source)
+        tag = _ROOT_RE.match(source, root) if root is not None and root < start else None
+        rest = before[_PIS_RE.match(before).end() :]  # type: ignore[union-attr]
+        where = (
+            f"inside <{tag.group(1).decode('utf-8', 'replace')}>"
+            if tag is not None
+            else "after a comment"
+            if rest.startswith(b"<!--")
+            else "after other content"
+        )
+        message = (
+            f"the XML declaration comes {where}, which {_TINYXML2} refuses "
+            "(XML_ERROR_PARSING_DECLARATION), as do lxml and xacro; the rest of the file was "
+            f"checked as {_TINYXML1} reads it"
+        )
+        return XmlProblem("X001", message, *at, severity=Severity.ERROR)
+    message = f"{said} {_TINYXML_BOTH}; the rest of the file was checked as they read it"
+    return XmlProblem("X001", message, *at, severity=Severity.WARNING)
+
+
+def _stray(at: tuple[int, int], stray: bytes) -> XmlProblem:
+    shown = stray.decode("utf-8", "replace").strip()
+    shown = shown if len(shown) <= 30 else shown[:29] + "…"
+    message = (
+        f"text {shown!r} before the root element, which {_TINYXML1} refuses "
+        f'("Error document empty"), as do lxml and xacro, but {_TINYXML2} ignores; the rest of '
+        "the file was checked as TinyXML2 reads it"
+    )
+    return XmlProblem("X001", message, *at, severity=Severity.ERROR)
 
 
 def _checked(root: etree._Element, source: bytes, prefixes: tuple[str, ...] = ()) -> Parsed:
