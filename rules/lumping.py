@@ -6,6 +6,8 @@ drops massless links; these functions adjust a rule's table (:mod:`consequences`
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from lxml import etree
 from urdflint.rules.consequences import (
     BAD_TENSOR,
@@ -18,7 +20,9 @@ from urdflint.rules.consequences import (
 from urdflint.model.bodies import GAZEBO_MASSLESS, bodies, selected
 from urdflint.model.document import Document, Joint
 from urdflint.model.effects import Consequence, Effect, kept, refused, warns
+from urdflint.model.finding import Severity
 from urdflint.model.inertia import judge, principal_moments
+from urdflint.model.targets import LABELS, gazebo_label, ordered
 
 
 def impossible(doc: Document, name: str, table: dict[str, Effect]) -> dict[str, Effect]:
@@ -83,6 +87,22 @@ def degenerate(doc: Document, name: str, tensor: tuple[float, ...]) -> dict[str,
     return DEGENERATE_TENSOR
 
 
+def degenerate_severity(doc: Document, name: str, tensor: tuple[float, ...]) -> Severity | None:
+    """How bad a zero principal moment on link ``name`` is: an error when
+    :func:`degenerate_matters`; else a warning when the link carries mass and a target not
+    selected refuses it (MuJoCo checks every body before fusing): harmless where it is
+    lumped, but the same file feeds other consumers; ``None`` when nothing refuses it."""
+    if degenerate_matters(doc, name, tensor):
+        return Severity.ERROR
+    own = bodies(doc).inertials.get(name)
+    if own is None or own.mass is None or own.mass <= 0:
+        return None
+    table = degenerate(doc, name, tensor)
+    if any(e.consequence is Consequence.REFUSED for e in table.values()):
+        return Severity.WARNING
+    return None
+
+
 def degenerate_matters(doc: Document, name: str, tensor: tuple[float, ...]) -> bool:
     """Whether a zero principal moment on link ``name`` is worth reporting: it carries mass,
     and a selected target refuses it, or its lumped body has no valid inertia and the link
@@ -97,3 +117,35 @@ def degenerate_matters(doc: Document, name: str, tensor: tuple[float, ...]) -> b
     if any(table[t].consequence is Consequence.REFUSED for t in selected(doc) if t in table):
         return True
     return not b.excused(name)
+
+
+def welded_note(
+    doc: Document, name: str, severity: Severity, effects: Mapping[str, Effect] | None = None
+) -> str:
+    """The clause a message adds when :func:`impossible_severity` lowered a finding: harmless
+    where the link is lumped, and the targets not selected that refuse the file anyway
+    (from the finding's ``effects``): the same file feeds other consumers."""
+    if severity is Severity.ERROR:
+        return ""
+    body = bodies(doc).body_of(name)
+    note = f"welded: {gazebo_label(doc.targets)} lumps it into '{body}', which stays valid"
+    refusing = refused_elsewhere(doc, effects or {})
+    if refusing:
+        note += f"; {refusing} the file"
+    return f" ({note})"
+
+
+def refused_elsewhere(doc: Document, effects: Mapping[str, Effect]) -> str:
+    """``MuJoCo refuses`` / ``MuJoCo and Drake refuse``: the targets outside the selection
+    whose effect is a refusal ('' when none)."""
+    chosen = selected(doc)
+    names = [
+        LABELS[t]
+        for t in ordered(tuple(effects))
+        if t not in chosen and effects[t].consequence is Consequence.REFUSED
+    ]
+    if not names:
+        return ""
+    if len(names) == 1:
+        return f"{names[0]} refuses"
+    return f"{', '.join(names[:-1])} and {names[-1]} refuse"

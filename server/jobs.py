@@ -189,10 +189,16 @@ def _answer(
         def wider(more: Settings) -> list[Finding]:
             return [scrub.finding(f) for f in relint(more)]
 
-        found = matrix.every_target(scrubbed, settings, wider)
+        chosen = result.targets.names if result.targets else settings.targets
+        found = matrix.every_target(scrubbed, replace(settings, targets=chosen), wider)
         rows = [scrub.value({"path": job.name, **row}) for row in found]
     models = {job.name: model_summary(result)} if job.fmt == "json" else {}
-    run_info = formatters.RunInfo(__version__, (job.name,), models, matrix=tuple(rows))
+    chosen_targets = {}
+    if result.targets and doc is not None and doc.root is not None:  # as the CLI's
+        chosen_targets = {job.name: scrub.value(result.targets.to_dict())}
+    run_info = formatters.RunInfo(
+        __version__, (job.name,), models, matrix=tuple(rows), targets=chosen_targets
+    )
     if job.fmt != "json":
         return _rendered(job.fmt, findings, run_info)
     from urdflint.outputs.formatters.json import document

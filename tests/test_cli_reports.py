@@ -69,7 +69,7 @@ def test_json_report_keeps_models_and_fail_on_reaches_junit(capsys, tmp_path: Pa
         f"junit:{xml}",
         str(GOOD),
     )
-    assert code == 0 and out.startswith("urdflint: ")
+    assert code == 0 and out.splitlines()[-1].startswith("urdflint: ")
     assert "models" in json.loads((tmp_path / "r.json").read_text(encoding="utf-8"))
     assert ET.parse(xml).getroot().get("failures") == "0"
 

@@ -38,7 +38,7 @@ def copy_fixture(bad: Path, tmp_path: Path) -> Path:
     target = tmp_path / bad.name
     shutil.copyfile(bad, target)
     folders = [p for p in bad.parent.iterdir() if p.is_dir() and p.name != "fixed"]
-    for extra in (bad.with_suffix(".toml"), *folders):  # meshes/, a package's folders
+    for extra in (bad.with_suffix(".toml"), bad.parent / "config.toml", *folders):  # meshes/...
         if extra.is_file():
             shutil.copyfile(extra, tmp_path / extra.name)
         elif extra.is_dir():
@@ -49,6 +49,8 @@ def copy_fixture(bad: Path, tmp_path: Path) -> Path:
 def fix_file(path: Path, code: str, unsafe: bool) -> int:
     argv = ["fix", "--isolated", "--select", code, "--exit-zero", str(path)]
     toml = path.with_suffix(".toml")
+    if not toml.is_file():
+        toml = path.parent / "config.toml"  # the folder's (fixture_settings reads it too)
     if toml.is_file():
         data = config.from_mapping(tomllib.loads(toml.read_text()))
         argv += [f"--target={t}" for t in data.targets]

@@ -95,7 +95,8 @@ def test_severity_follows_the_targets() -> None:
 def test_gazebo_self_collide_makes_it_a_warning(tmp_path: Path) -> None:
     extra = '<gazebo reference="forearm"><selfCollide>true</selfCollide></gazebo>'
     [found] = c013(arm(tmp_path, '<box size="0.1 0.1 0.1"/>', extra))
-    assert found.severity is Severity.WARNING and "Gazebo Classic collides" in found.message
+    assert found.severity is Severity.WARNING  # the assumed target: Gazebo Sim
+    assert "Gazebo Sim collides" in found.message
     off = extra + '<gazebo reference="base_link"><selfCollide>false</selfCollide></gazebo>'
     model = "<gazebo><self_collide>true</self_collide></gazebo>" + off.split("</gazebo>", 1)[1]
     [still] = c013(arm(tmp_path, '<box size="0.1 0.1 0.1"/>', model, "m.urdf"))

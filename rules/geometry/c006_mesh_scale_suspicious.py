@@ -20,6 +20,11 @@ to it shrinks it a thousand times, which this rule reports. Pinocchio 4.1
 across, so its collision geometry differs from Gazebo's for such files. STL
 and OBJ carry no unit. MuJoCo and Drake do not read Collada at all (C009).
 
+A model that is a lone static object, not a robot (one link, no joints, no mass: a ground
+plane, a terrain, a building, as in `pybullet_data`'s `plane.urdf`, a 30 m plane), may be
+large: for it only a side over 1 km counts as too large (a part of a metre or more
+exported in millimetres).
+
 ## Why is this bad?
 REP 103 fixes the unit of every ROS description at the metre, and so do
 Gazebo, MuJoCo, PyBullet, Drake and Pinocchio. STL has no unit at all and CAD
@@ -46,6 +51,23 @@ from urdflint.model.structure import q
 from urdflint.model.values import fmt
 from urdflint.sources.meshes import MAX_EXTENT, load, references, scale_hint, suspicious_size
 
+SCENERY_MAX = 1000.0  # m: the largest side a lone static object may have
+
+
+def lone_static_object(doc: Document) -> bool:
+    """One link, no joints and no mass (absent or zero): scenery (PyBullet loads mass 0 as
+    a static body), not a robot."""
+    if len(doc.links) != 1 or doc.joints:
+        return False
+    mass = doc.links[0].inertial
+    if mass is None:
+        return True
+    value = mass.find("mass")
+    try:
+        return value is None or float(value.get("value") or "0") <= 0
+    except ValueError:
+        return False
+
 
 @rule(
     "C006",
@@ -55,11 +77,14 @@ from urdflint.sources.meshes import MAX_EXTENT, load, references, scale_hint, su
     needs=("trimesh",),
 )
 def check(doc: Document) -> Iterator[Hit]:
+    scenery = lone_static_object(doc)
     for ref in references(doc):
         info = load(doc, ref)
         scale = ref.scale
         if info is None or scale is None or not suspicious_size(info):
             continue
+        if scenery and MAX_EXTENT < info.largest <= SCENERY_MAX:
+            continue  # a plane or a terrain may be large
         size = info.largest
         shown = " ".join(fmt(v) for v in scale)
         what = f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}"
@@ -67,6 +92,8 @@ def check(doc: Document) -> Iterator[Hit]:
         if info.unit != 1.0:
             where += f" and its Collada unit of {fmt(info.unit)} m"
         hints = scale_hint(size)
+        if scenery and size > SCENERY_MAX:
+            hints = [(0.001, "millimetres")]
         if not hints:
             band = "over 10 m" if size > MAX_EXTENT else "under 1 mm"
             yield Hit(ref.element, f"{what} is {where}, {band}: check its unit")

@@ -47,7 +47,7 @@ from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import massless
-from urdflint.model.bodies import bodies, impossible_severity, welded_note
+from urdflint.model.bodies import bodies, impossible_severity
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
 from urdflint.model.values import fmt
@@ -67,7 +67,7 @@ def check(doc: Document) -> Iterator[Hit]:
         if inertial.mass < 0:
             severity = impossible_severity(doc, name)
             message = f"link '{name}' has mass {fmt(inertial.mass)} kg"
-            message += welded_note(doc, name, severity)
+            message += L.welded_note(doc, name, severity)
             yield Hit(
                 inertial.mass_element,
                 message,

@@ -49,7 +49,7 @@ from urdflint.rules import consequences as K
 from urdflint.rules import lumping as L
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies, impossible_severity, welded_note
+from urdflint.model.bodies import bodies, impossible_severity
 from urdflint.model.document import Document
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
@@ -74,14 +74,15 @@ def check(doc: Document) -> Iterator[Hit]:
             continue
         negative = any(v < -ZERO_MOMENT for _, v in bad)
         impossible = negative or judge(principal_moments(inertial.tensor)) == "impossible"
-        severity = impossible_severity(doc, name) if impossible else Severity.ERROR
         if impossible:
+            severity = impossible_severity(doc, name)
             effects = L.impossible(doc, name, K.BAD_TENSOR)
-        elif L.degenerate_matters(doc, name, inertial.tensor):  # a point mass or a rod
-            effects = L.degenerate(doc, name, inertial.tensor)
-        else:
-            continue
+        else:  # a point mass or a rod
+            found = L.degenerate_severity(doc, name, inertial.tensor)
+            if found is None:
+                continue
+            severity, effects = found, L.degenerate(doc, name, inertial.tensor)
         parts = [f"{k} = {fmt(v)}" for k, v in bad]
         listed = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
-        message = f"link '{name}' has {listed} kg·m²" + welded_note(doc, name, severity)
+        message = f"link '{name}' has {listed} kg·m²" + L.welded_note(doc, name, severity, effects)
         yield Hit(inertial.inertia_element, message, severity=severity, effects=effects)

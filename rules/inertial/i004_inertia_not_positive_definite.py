@@ -54,7 +54,7 @@ from urdflint.rules import lumping as L
 from urdflint.rules.inertial import refit
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies, impossible_severity, welded_note
+from urdflint.model.bodies import bodies, impossible_severity
 from urdflint.model.document import Document
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
@@ -80,18 +80,25 @@ def check(doc: Document) -> Iterator[Hit]:
         listed = ", ".join(fmt(m) for m in moments) if moments[0] <= tol else ""
         if moments[0] < -tol:
             severity = impossible_severity(doc, name)
+            effects = L.impossible(doc, name, K.BAD_TENSOR)
             yield Hit(
                 inertial.inertia_element,
                 f"link '{name}' has an inertia tensor that is not positive definite "
-                f"(principal moments {listed} kg·m²)" + welded_note(doc, name, severity),
+                f"(principal moments {listed} kg·m²)" + L.welded_note(doc, name, severity, effects),
                 severity=severity,
-                effects=L.impossible(doc, name, K.BAD_TENSOR),
+                effects=effects,
                 repair=refit.repair_moments(doc, name, inertial),
             )
-        elif moments[0] <= tol and L.degenerate_matters(doc, name, inertial.tensor):
+        elif moments[0] <= tol:
+            severity = L.degenerate_severity(doc, name, inertial.tensor)
+            if severity is None:
+                continue
+            effects = L.degenerate(doc, name, inertial.tensor)
             yield Hit(
                 inertial.inertia_element,
-                f"link '{name}' has a singular inertia tensor (principal moments {listed} kg·m²)",
-                effects=L.degenerate(doc, name, inertial.tensor),
+                f"link '{name}' has a singular inertia tensor (principal moments {listed} kg·m²)"
+                + L.welded_note(doc, name, severity, effects),
+                severity=severity,
+                effects=effects,
                 repair=refit.repair_moments(doc, name, inertial),
             )

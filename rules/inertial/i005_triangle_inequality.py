@@ -48,7 +48,7 @@ from urdflint.rules import lumping as L
 from urdflint.rules.inertial import refit
 
 from urdflint.engine.registry import Hit, rule
-from urdflint.model.bodies import bodies, impossible_severity, welded_note
+from urdflint.model.bodies import bodies, impossible_severity
 from urdflint.model.document import Document
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
@@ -73,11 +73,12 @@ def check(doc: Document) -> Iterator[Hit]:
         tol = tolerance(moments)
         if a > tol and a + b < c - tol:
             severity = impossible_severity(doc, name)
+            effects = L.impossible(doc, name, K.BAD_TENSOR)
             yield Hit(
                 inertial.inertia_element,
                 f"link '{name}' has principal moments {fmt(a)}, {fmt(b)} and {fmt(c)} kg·m², "
-                f"and {fmt(a)} + {fmt(b)} < {fmt(c)}" + welded_note(doc, name, severity),
+                f"and {fmt(a)} + {fmt(b)} < {fmt(c)}" + L.welded_note(doc, name, severity, effects),
                 severity=severity,
-                effects=L.impossible(doc, name, K.BAD_TENSOR),
+                effects=effects,
                 repair=refit.repair_moments(doc, name, inertial),
             )

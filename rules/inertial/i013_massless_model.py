@@ -7,9 +7,11 @@ mass: no `<inertial>`, or `<mass value="0">`. That covers a massless root whose
 children all hang from movable joints (a fixed-base arm whose `base_link` was
 left without mass) and a single-link robot with mass 0. A root named `world`
 is not reported: sdformat treats it as the world and converts its children one
-by one (I001 and I002 judge them). Roots with a negative mass are I002's, and a
-model made only of frames (no `<inertial>`, `<visual>` or `<collision>` anywhere)
-has nothing to lose.
+by one (I001 and I002 judge them). Roots with a negative mass are I002's. A model
+made only of frames (no `<inertial>`, `<visual>` or `<collision>` anywhere, down to a
+lone empty link, as sdformat's own test `mass_no_inertial`) is reported too: Gazebo
+refuses it all the same (observed, sdformat 12.3), while MuJoCo, Drake, PyBullet and
+Pinocchio load it.
 
 It is an **error** when the root declares its mass 0 (`<mass value="0"/>`,
 PyBullet's way of pinning a base) or is the only link, and a **warning** when
@@ -76,8 +78,6 @@ def check(doc: Document) -> Iterator[Hit]:
         return
     if root is None:
         return
-    if not any(link.inertial is not None or link.visuals or link.collisions for link in doc.links):
-        return  # only frames (a TF tree): there is nothing to simulate, nothing is lost
     b = bodies(doc)
     members = [name for name, _, _ in b.members(root)]
     masses = [i.mass for n in members if (i := b.inertials.get(n)) is not None]
@@ -96,7 +96,7 @@ def check(doc: Document) -> Iterator[Hit]:
     yield Hit(
         inertial.mass_element if inertial is not None else link.element,
         f"{who} has {what}{welded}, so {gazebo_label(doc.targets)} drops it and with it "
-        f"{lost}: sdformat finds no link to load",
+        f'{lost}: sdformat finds no link to load ("A model must have at least one link")',
         attribute="value" if inertial is not None and inertial.mass_element is not None else None,
         severity=Severity.ERROR if inertial is not None or not below else Severity.WARNING,
     )

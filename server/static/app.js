@@ -124,6 +124,7 @@
     // the installed engines of the chosen simulator (all of them for "All simulators")
     const target = $("target").value;
     if (target === "all") return offer.installed.slice();
+    if (!target) return []; // inferred on the server: choose a simulator to confirm in it
     const engine = offer.engineOf[target];
     return engine && offer.installed.includes(engine) ? [engine] : [];
   }
@@ -242,6 +243,7 @@
         `${n} ${n === 1 ? sev : PLURAL[sev]}`);
     }));
     renderModels(doc.models || {});
+    renderTargets(doc.targets || {});
     const scene = firstScene(doc.scene);
     linkOf = linksOfFindings(doc.findings, scene);
     linkOrder = scene ? scene.links.map((l) => l.name) : [];
@@ -257,6 +259,18 @@
     document.dispatchEvent(new CustomEvent("urdflint:results", {
       detail: { scene, findings: doc.findings, rows: rowIds, started },
     }));
+  }
+
+  function renderTargets(found) {
+    // which targets the findings are for, and how they were chosen (as the CLI's line)
+    const chosen = Object.values(found)[0];
+    const line = $("targets-line");
+    if (!chosen || !Array.isArray(chosen.names)) { line.textContent = ""; return; }
+    const why = (chosen.evidence || []).filter((e) => e && e.why).map((e) => e.why);
+    const how = chosen.how === "given" ? "as chosen"
+      : chosen.how === "assumed" ? "assumed: nothing in the model names a simulator"
+        : `inferred from ${why.slice(0, 3).join("; ")}`;
+    line.textContent = `Checked for ${chosen.names.join(", ")} (${how})`;
   }
 
   function renderModels(models) {

@@ -85,6 +85,9 @@ def test_broken_arm_findings_model_and_tree(driver: Any, base_url: str, tmp_path
     for item in driver.find_elements(By.CSS_SELECTOR, "#counts li"):
         severity, count = item.get_attribute("data-severity"), item.get_attribute("data-count")
         assert int(count) == sum(r["severity"] == severity for r in found)
+    assert driver.find_element(By.ID, "targets-line").text == (
+        "Checked for gz-sim, ros (assumed: nothing in the model names a simulator)"
+    )
 
     model = driver.find_element(By.CSS_SELECTOR, "#summary .model")
     assert model.get_attribute("data-built") == "false"  # urdfdom (so Pinocchio) refuses it
@@ -522,7 +525,8 @@ def test_simulators_outcomes_engines_and_links(driver: Any, base_url: str) -> No
     driver.find_element(By.ID, "submit").click()
     WebDriverWait(driver, 30).until(lambda d: d.find_element(By.ID, "matrix-card").is_displayed())
     sent = dict(driver.execute_script("return window.sent"))
-    assert sent["matrix"] == "true" and sent["target"] == "all" and "confirm" not in sent
+    # no target: the server infers them, as the CLI does (one verdict everywhere)
+    assert sent["matrix"] == "true" and "target" not in sent and "confirm" not in sent
 
     shown = {row["target"]: row for row in matrix_rows(driver)}
     assert [shown[t]["outcome"] for t in ("mujoco", "drake", "pinocchio", "ros")] == [

@@ -45,6 +45,7 @@ class Run:
     crashed: bool = False
     expects: bool = False
     matrix: list[dict[str, Any]] = field(default_factory=list)
+    targets: dict[str, Any] = field(default_factory=dict)  # path -> its targets, how chosen
 
 
 def run(args: argparse.Namespace) -> int:
@@ -66,7 +67,8 @@ def run(args: argparse.Namespace) -> int:
 
     def lint() -> Run:
         found = Run(errors=list(errors))
-        _lint_files(args, files, finder, found, context)
+        _lint_files(args, robots, finder, found, context)
+        fragments.add(pieces, finder, found, context)
         return found
 
     try:
@@ -92,6 +94,7 @@ def run(args: argparse.Namespace) -> int:
         outcome.ran,
         show_info,
         tuple(outcome.matrix),
+        outcome.targets,
     )
     _write_outputs([(fmt, args.output), *reports], findings, info)
     return _exit_code(args, files, outcome, findings)

@@ -12,7 +12,7 @@ import os
 import sys
 import time
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import IO, Any
 
@@ -49,6 +49,7 @@ class Outcome:
     model: Any = None
     matrix: list[dict[str, Any]] = field(default_factory=list)
     error: str | None = None
+    targets: dict[str, Any] | None = None  # the targets the findings are for, and how chosen
 
 
 def cpu_count() -> int:
@@ -134,7 +135,8 @@ def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
                 return linter.lint_bytes(task.data, task.shown, wider, context, Path.cwd()).findings
             return linter.lint_path(Path(task.name), task.shown, wider, context).findings
 
-        found = matrix.every_target(result.findings, task.settings, relint)
+        chosen = result.targets.names if result.targets else task.settings.targets
+        found = matrix.every_target(result.findings, replace(task.settings, targets=chosen), relint)
         rows = [{"path": task.shown, **row} for row in found]
     if flags.emit_expanded and doc is not None:
         flags.emit_expanded.write_bytes(doc.source)
@@ -146,7 +148,13 @@ def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         result.crashed,
         report.model_summary(result),
         rows,
+        targets=result.targets.to_dict() if result.targets and rows_possible(doc) else None,
     )
+
+
+def rows_possible(doc: Any) -> bool:
+    """Whether a model was read (a matrix and the targets line are about one)."""
+    return doc is not None and doc.root is not None
 
 
 _WORKER: tuple[Any, Flags] | None = None  # the run's context and flags, in each worker

@@ -65,7 +65,7 @@ class Settings:
     severity: dict[str, Severity | None] = field(default_factory=dict)  # None = off
     per_file_ignores: tuple[tuple[str, tuple[str, ...]], ...] = ()
     fail_on: str = "error"
-    targets: tuple[str, ...] = targets.DEFAULT_TARGETS
+    targets: tuple[str, ...] = ()  # none given: inferred per file (urdflint.engine.inference)
     rule_options: dict[str, dict[str, Any]] = field(default_factory=dict)
     package_paths: dict[str, Path] = field(default_factory=dict)  # resolved against the file
     expect: Expect = field(default_factory=Expect)

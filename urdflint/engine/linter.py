@@ -8,7 +8,7 @@ import gc
 import logging
 import os
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from lxml import etree
@@ -17,6 +17,7 @@ from urdflint.cache import deps
 from urdflint.engine import fixes, instances, registry, suppress
 from urdflint.engine.config import Settings
 from urdflint.engine.context import Context
+from urdflint.engine.inference import Targets
 from urdflint.engine.registry import Hit, Rule
 from urdflint.model import memo, optional, targets
 from urdflint.model.document import Document
@@ -44,6 +45,7 @@ class Result:
     document: Document | None = None
     skipped: dict[str, tuple[str, ...]] = field(default_factory=dict)  # code -> missing modules
     ran: tuple[str, ...] = ()  # codes of the rules that ran to completion on the document
+    targets: Targets | None = None  # the targets the findings are for, and how chosen
 
     @property
     def crashed(self) -> bool:
@@ -126,15 +128,31 @@ def lint_document(doc: Document, settings: Settings) -> Result:
     # The rules allocate objects by the hundred thousand on a big model and leave next to no
     # reference cycles: the cyclic collector, which would walk every live object again and
     # again as they pile up (a 10-25% share of an 8,000-link check), waits until they ran.
+    chosen = targets_of(doc, settings)
+    if not chosen.given:
+        settings = replace(settings, targets=chosen.names)
+    doc.targets = frozenset(chosen.names)
     pause = gc.isenabled()
     if pause:
         gc.disable()
     try:
-        return _lint_document(doc, settings)
+        result = _lint_document(doc, settings)
+        result.targets = chosen
+        return result
     finally:
         memo.forget()  # the per-element results the rules shared: nothing outlives the run
         if pause:
             gc.enable()
+
+
+def targets_of(doc: Document, settings: Settings) -> Targets:
+    """The targets ``settings`` give (``--target``, the configuration), else those the model
+    and its package show (:mod:`urdflint.engine.inference`)."""
+    if settings.targets:
+        return Targets(tuple(settings.targets), given=True)
+    from urdflint.engine import inference
+
+    return inference.infer(doc)
 
 
 def _lint_document(doc: Document, settings: Settings) -> Result:

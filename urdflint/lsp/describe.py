@@ -140,8 +140,6 @@ def _massless(doc: Any, name: str | None) -> str:
     if name == "world" and name == doc.graph.root:
         return "the world frame (sdformat, MuJoCo and Drake weld the links fixed to it in place)"
     if name == doc.graph.root:
-        if not any(link.inertial is not None or link.visuals for link in doc.links):
-            return "a tree of frames, with nothing to simulate"
         b = bodies.bodies(doc)
         if bodies.selected(doc) & bodies.LUMPING and not b.mass(name):
             label = bodies.gazebo_label(doc.targets)

@@ -47,6 +47,9 @@ MOVABLE = frozenset({"revolute", "continuous", "prismatic", "floating", "planar"
 # MuJoCo fuses static bodies too, but validates every body before (mujoco 4.0: "inertia
 # must satisfy A + B >= C", naming the welded link); Drake and PyBullet keep welded links.
 LUMPING = frozenset(GAZEBO)
+# Targets that never read a link's inertia: ROS (robot_state_publisher and KDL's kinematics,
+# MoveIt's RobotModel) loads any tensor and uses none.
+INERTIA_BLIND = frozenset({"ros"})
 MUJOCO_DENSITY = 1000.0  # kg/m^3, MuJoCo's default geom density
 
 
@@ -207,10 +210,12 @@ def impossible_severity(doc: Document, name: str) -> Severity:
     An error, except on a link welded to its parent by a fixed joint when every selected
     target lumps it before checking (Gazebo Classic and Sim): then only the lumped body
     counts, and the value is a warning while that body is sound. MuJoCo, Drake and
-    PyBullet check each link on its own, so for them it is always an error.
+    PyBullet check each link on its own, so for them it is always an error. ROS reads no
+    inertia (:data:`INERTIA_BLIND`), so beside Gazebo it changes nothing.
     """
     b = bodies(doc)
-    if not b.merged(name) or not selected(doc) <= LUMPING:
+    weighing = selected(doc) - INERTIA_BLIND
+    if not b.merged(name) or not weighing <= LUMPING:
         return Severity.ERROR
     return Severity.WARNING if b.body_is_sound(name) else Severity.ERROR
 
@@ -218,14 +223,6 @@ def impossible_severity(doc: Document, name: str) -> Severity:
 def selected(doc: Document) -> frozenset[str]:
     """The document's targets (the default ones when none is selected)."""
     return doc.targets or frozenset(DEFAULT_TARGETS)
-
-
-def welded_note(doc: Document, name: str, severity: Severity) -> str:
-    """The clause a message adds when :func:`impossible_severity` lowered a finding."""
-    if severity is Severity.ERROR:
-        return ""
-    body = bodies(doc).body_of(name)
-    return f" (welded: {gazebo_label(doc.targets)} lumps it into '{body}', which stays valid)"
 
 
 @dataclass(frozen=True, slots=True)

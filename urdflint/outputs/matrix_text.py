@@ -47,7 +47,7 @@ def table(rows: Sequence[dict[str, Any]]) -> list[str]:
             brief = row["predicted"]["outcome"] in ("refused", "crashes")
             lines.append(f"{text} {_deciding(row['predicted']['findings'], brief)}".rstrip())
     if not all(r.get("selected", True) for r in rows):
-        lines.append("  ✓ the targets checked: their findings are reported and decide the exit code")
+        lines.append("  ✓ the targets checked: their findings are the ones reported")
     if any(r["basis"] != "engine" for r in rows):
         lines.append("  * not run here: predicted from its source code and documentation")
     return lines

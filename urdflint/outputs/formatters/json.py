@@ -20,6 +20,8 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, object]:
         data["models"] = run.models
     if run.matrix:
         data["matrix"] = list(run.matrix)
+    if run.targets:
+        data["targets"] = run.targets
     return data
 
 

@@ -20,6 +20,7 @@ class RunInfo:
     rules: dict[str, tuple[str, ...]] = field(default_factory=dict)  # path -> rule codes run
     show_info: bool = True  # text: list infos one by one (else one summary line)
     matrix: tuple[dict[str, Any], ...] = ()  # --matrix: one row per (file, target)
+    targets: dict[str, Any] = field(default_factory=dict)  # path -> the targets and how chosen
 
     def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
         counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}
@@ -34,6 +35,26 @@ def summary_line(findings: Sequence[Finding], run: RunInfo) -> str:
         return f"urdflint: no problems in {_plural(counts['files'], 'file')}"
     parts = [_plural(counts[str(s)], str(s)) for s in reversed(Severity) if counts[str(s)]]
     return f"urdflint: {', '.join(parts)} in {_plural(counts['files'], 'file')}"
+
+
+def targets_lines(run: RunInfo) -> list[str]:
+    """``targets: Gazebo Sim, ROS (KDL, MoveIt): assumed, ...`` for the files whose targets
+    were inferred or assumed (none when every file's were given), one line per distinct
+    choice, with the number of files when several were checked."""
+    from urdflint.engine.inference import Evidence, Targets
+
+    groups: dict[str, int] = {}
+    for chosen in run.targets.values():
+        if not chosen or chosen.get("how") == "given":
+            continue
+        evidence = tuple(Evidence(**e) for e in chosen.get("evidence", ()))
+        sentence = Targets(tuple(chosen["names"]), False, evidence).sentence()
+        groups[sentence] = groups.get(sentence, 0) + 1
+    several = len(run.targets) > 1
+    return [
+        f"targets: {sentence}" + (f" [{_plural(count, 'file')}]" if several else "")
+        for sentence, count in groups.items()
+    ]
 
 
 def _plural(count: int, word: str) -> str:

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 
 from urdflint.model.finding import Finding, Severity
 from urdflint.outputs import matrix_text
-from urdflint.outputs.formatters.run import RunInfo, summary_line
+from urdflint.outputs.formatters.run import RunInfo, summary_line, targets_lines
 
 MAX_CODES = 6  # rules named in the info summary line
 
@@ -38,6 +38,7 @@ def render(findings: Sequence[Finding], run: RunInfo) -> str:
     fixable = fixable_line(findings)
     if fixable:
         lines.append(fixable)
+    lines.extend(targets_lines(run))
     lines.append(summary_line(findings, run))
     return "\n".join(lines) + "\n"
 
