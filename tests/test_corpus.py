@@ -33,7 +33,7 @@ REVIEWED_ERRORS: dict[str, set[str]] = {
     "unitree_go1": {"G001"},
     # effort="-1" velocity="-1" (SDF's "unlimited", not URDF's): Pinocchio refuses the model
     # ("min_effort > max_effort"); P001 says so and cites the J010 finding.
-    "eve_r3": {"J010", "P001"},
+    "eve_r3": {"J010"},  # P001 (Pinocchio refuses the effort) is J010's consequence
     # pybullet_data's iiwa pins its base with <mass value="0"/> (PyBullet's fixed-base
     # convention): Gazebo's converter drops the massless root and with it every link.
     "kuka_iiwa": {"I013"},

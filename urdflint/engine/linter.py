@@ -207,10 +207,50 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
     if "U002" in enabled:
         ran.append("U002")
         findings.extend(_unused(doc, directives, enabled, settings))
+    findings = _one_cause(doc, findings)
     findings.sort(key=Finding.sort_key)
     if doc.origin is not None:
         findings = instances.merge(findings)
     return Result(doc.path, findings, doc, skipped, tuple(sorted(ran)))
+
+
+def _one_cause(doc: Document, findings: list[Finding]) -> list[Finding]:
+    """One defect, one finding: a P001 whose refusal or misreading is the consequence of a
+    static finding that is reported (its ``blocker``) goes, and that finding carries the
+    Pinocchio effect instead (when Pinocchio is a target and its own table says nothing for
+    Pinocchio: a rule's table is what the engines were observed to do)."""
+    if "physics" not in doc.__dict__ or not any(f.code == "P001" for f in findings):
+        return findings
+    physics = doc.physics
+    cause = physics.blocker
+    if cause is None:
+        return findings
+    element = doc.element_path(cause.element) if cause.element is not None else None
+    matches = [
+        f for f in findings
+        if (f.code, f.line) == (cause.code, cause.line) and element in (None, f.element)
+    ]  # fmt: skip
+    if not matches:
+        return findings  # the cause is ignored or suppressed: P001 is the only word on it
+    from urdflint.model import effects as fx
+
+    detail = (physics.reason or "").split(f" (see {cause.code} ")[0]  # it is this finding
+    detail = detail.split(f" ({cause.code} on ")[0].split(f"; {cause.code} on ")[0]
+    detail += ")" * (detail.count("(") - detail.count(")"))
+    effect = fx.refused(detail)
+    if physics.misread:  # a zero axis builds another joint; an unread <inertial>, a zero one
+        effect = fx.changed(detail) if cause.code == "J007" else fx.substituted(detail)
+    kept = []
+    for f in findings:
+        if f.code == "P001":
+            continue
+        if f is matches[0] and "pinocchio" in doc.targets and "pinocchio" not in dict(f.effects):
+            others = tuple((t, e) for t, e in f.effects if t != "pinocchio")
+            chosen = targets.ordered(doc.targets)
+            merged = dict(others) | {"pinocchio": effect}
+            f = replace(f, effects=tuple((t, merged[t]) for t in chosen if t in merged))
+        kept.append(f)
+    return kept
 
 
 def _run(rule: Rule, doc: Document, settings: Settings) -> list[tuple[Rule, Hit]]:

@@ -201,6 +201,14 @@ def _not_built(doc: Document, base: Physics) -> Physics | None:
         )
         return base
     loop = blocker(doc, NEVER_BUILT)
+    first = blocker(doc, BLOCKING) if loop is not None else None
+    if first is not None and first is not loop and first.code != loop.code:  # type: ignore[union-attr]
+        base.blocker, base.element = first, first.element
+        base.reason = (
+            "Pinocchio refuses the model: urdfdom, its parser, stops at an error before the "
+            f"loop (see {first.code} {first.name} on {first.where})"
+        )
+        return base
     if loop is not None:
         base.blocker, base.element = loop, loop.element
         base.reason = (

@@ -62,7 +62,31 @@ def blocker(doc: Document, codes: tuple[str, ...], keep: Keep | None = None) -> 
             break
     if not found:
         return None
-    return min(found, key=lambda b: (b.line, b.code))
+    return min(found, key=urdfdom_order)
+
+
+# urdfdom's parseURDF reads the robot's name and version, then every <material>, every
+# <link>, every <joint>, and only then builds the tree; Pinocchio checks its own after it.
+TREE_RULES = frozenset({"S003", "S004", "S005"})
+PINOCCHIO_RULES = frozenset({"J010", "S008"})
+PARTS = {"material": 1, "link": 2, "joint": 3}
+
+
+def urdfdom_order(found: Blocker) -> tuple[int, int, str]:
+    """Where urdfdom (then Pinocchio) stops: the first cause is the one to name."""
+    if found.code in PINOCCHIO_RULES:
+        phase = 5
+    elif found.code in TREE_RULES:
+        phase = 4
+    else:
+        phase, node = 0, found.element
+        while node is not None:
+            parent = node.getparent()
+            if parent is not None and parent.getparent() is None and node.tag in PARTS:
+                phase = PARTS[node.tag]  # a child of <robot>
+                break
+            node = parent
+    return phase, found.line, found.code
 
 
 def inside(el: etree._Element | None, tags: frozenset[str]) -> bool:
