@@ -128,7 +128,11 @@ def welded_note(
     if severity is Severity.ERROR:
         return ""
     body = bodies(doc).body_of(name)
-    note = f"welded: {gazebo_label(doc.targets)} lumps it into '{body}', which stays valid"
+    label = gazebo_label(doc.targets)
+    if body == name:  # the body's own link: the links welded to it make it sound
+        note = f"{label} lumps the links welded to it into it, and that body stays valid"
+    else:
+        note = f"welded: {label} lumps it into '{body}', which stays valid"
     refusing = refused_elsewhere(doc, effects or {})
     if refusing:
         note += f"; {refusing} the file"

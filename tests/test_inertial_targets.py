@@ -36,7 +36,11 @@ def test_impossible_values_on_welded_links_warn_when_gazebo_lumps_them_into_a_va
         for targets in (("gazebo-classic",), ("gz-sim",), ("gazebo-classic", "gz-sim")):
             (finding,) = found(path, code, *targets)
             assert finding.severity is Severity.WARNING, (code, targets)
-            assert "(welded: " in finding.message and "which stays valid)" in finding.message
+            assert "(welded: " in finding.message and "which stays valid" in finding.message
+            # the same file feeds other consumers: the clause names those that refuse it
+            # (MuJoCo ignores a negative mass on a welded link: I002 names none)
+            refusing = finding.message.endswith("; MuJoCo refuses the file)")
+            assert refusing is (code != "I002"), finding.message
         # MuJoCo checks every link before fusing static bodies: an error as soon as it is selected
         assert severities(path, code, "mujoco") == [Severity.ERROR]
         assert severities(path, code, "gazebo-classic", "mujoco") == [Severity.ERROR]
@@ -124,7 +128,7 @@ def test_massless_model_severity() -> None:
     assert pinned.severity is Severity.ERROR
     assert pinned.message == (
         "root link 'base_link' has mass 0 kg, so Gazebo Classic drops it and with it the whole "
-        "model (2 links): sdformat finds no link to load"
+        'model (2 links): sdformat finds no link to load ("A model must have at least one link")'
     )
     (single,) = found(RULES / "I013" / "bad_single.urdf", "I013", "gz-sim")
     assert single.severity is Severity.ERROR
