@@ -17,4 +17,5 @@ from urdflint.rules.geometry import (  # noqa: F401
     c014_non_portable_mesh_path,
     c015_package_not_a_dependency,
     c016_path_case_mismatch,
+    c017_duplicate_package,
 )

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint import __version__
-from urdflint.cli import fix
+from urdflint.cli import fix, show_packages
 from urdflint.cli.check_options import add_parser
 from urdflint.cli.common import (
     EXIT_ERROR,
@@ -60,6 +60,8 @@ def run(args: argparse.Namespace) -> int:
     context = run_context(args, open_cache(args, here))
     files, errors = collect(args.paths, context.workspace)
     files = as_entries(_changed_only(args, files), context.workspace)
+    if args.show_packages:
+        show_packages.write(files, context, finder, sys.stderr)
     accepted = _load_baseline(args)
     if args.emit_expanded and not (len(files) == 1 and files[0].lower().endswith(".xacro")):
         raise UsageError("--emit-expanded needs exactly one xacro file")

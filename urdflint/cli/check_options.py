@@ -97,6 +97,7 @@ def _options(check: argparse.ArgumentParser) -> None:
     cache_options(check)
     fix.add_options(check)
     _jobs_option(check)
+    _show_packages_option(check)
 
 
 def _jobs_option(check: argparse.ArgumentParser) -> None:
@@ -108,6 +109,15 @@ def _jobs_option(check: argparse.ArgumentParser) -> None:
         metavar="N",
         help="check files in N processes (default: one per CPU for 8 files or more, else 1); "
         "the output is the same as with --jobs 1",
+    )
+
+
+def _show_packages_option(check: argparse.ArgumentParser) -> None:
+    check.add_argument(
+        "--show-packages",
+        action="store_true",
+        help="list on stderr which folder each package name (package://, $(find)) resolves "
+        "to for the files checked, and why; findings and exit code stay the same",
     )
 
 

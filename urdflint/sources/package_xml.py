@@ -1,11 +1,11 @@
 """ROS package manifests (``package.xml``) and where a description's elements are written.
 
-Serves the portability rules C014 and C015: which package a file lies in
+Serves the portability rules C014, C015 and C017: which package a file lies in
 (:func:`enclosing`), its name and the dependencies a binary install pulls in
 (:func:`read`), the ``package://`` form of a path inside a package (:func:`package_uri`),
 and the file and line that write an element of a document, also through xacro
-(:func:`written`), and every mesh and texture reference of a document
-(:func:`file_references`).
+(:func:`written`), every mesh and texture reference of a document
+(:func:`file_references`), and every package name it uses (:func:`package_uses`).
 
 A manifest is parsed with the hardened parser (no entities, no DTD, no network) and
 never over 1 MiB; a malformed one is a :class:`Manifest` with ``problem`` set.
@@ -13,6 +13,7 @@ never over 1 MiB; a malformed one is a :class:`Manifest` with ``problem`` set.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path, PurePosixPath
@@ -22,11 +23,14 @@ from lxml import etree
 
 from urdflint.model.document import make_parser
 from urdflint.model.structure import q
-from urdflint.sources.meshes import FileRef, references, textures
-from urdflint.sources.resolve import MAX_PACKAGE_XML_BYTES
+from urdflint.sources.meshes import FileRef, package_of, references, textures
+from urdflint.sources.resolve import MAX_PACKAGE_XML_BYTES, holder
 
 if TYPE_CHECKING:
     from urdflint.model.document import Document
+
+FIND_USE_RE = re.compile(rb"\$\((?:find|find-pkg-share)\s+([^)\s$]+)\)")
+COMMENT_RE = re.compile(rb"<!--.*?-->", re.S)
 
 # What a binary install of the package brings along (bloom's Debian "Depends:" is
 # package.run_depends + buildtool_export_depends, and catkin_pkg's run_depends is
@@ -34,7 +38,6 @@ if TYPE_CHECKING:
 RUNTIME_TAGS = frozenset(
     {"depend", "exec_depend", "run_depend", "build_export_depend", "buildtool_export_depend"}
 )
-MAX_LEVELS = 12  # folders searched above a file for its package.xml
 
 
 @dataclass(frozen=True, slots=True)
@@ -79,17 +82,7 @@ def read(folder: Path) -> Manifest:
 def enclosing(path: Path, stop: Path | None = None) -> Path | None:
     """The nearest folder above ``path`` (a file) holding a ``package.xml``, not above
     ``stop`` when given (the service's root)."""
-    for level, folder in enumerate(path.parents):
-        if level >= MAX_LEVELS:
-            return None
-        if stop is not None and not folder.is_relative_to(stop):
-            return None
-        try:
-            if (folder / "package.xml").is_file():
-                return folder
-        except OSError:
-            return None
-    return None
+    return holder(path.parent, stop)
 
 
 def package_uri(path: Path, stop: Path | None = None) -> str | None:
@@ -155,3 +148,34 @@ def _file_references(doc: Document) -> list[FileRef]:
         for ref in references(doc)
     ]
     return meshes + textures(doc)
+
+
+@dataclass(frozen=True, slots=True)
+class Use:
+    """A package name a document uses: in a ``package://`` mesh or texture (``element``),
+    or in a xacro ``$(find NAME)`` written at ``line``, ``column`` of ``path`` (``None``:
+    the main file)."""
+
+    name: str
+    element: etree._Element | None = None
+    path: str | None = None
+    line: int | None = None
+    column: int | None = None
+
+
+def package_uses(doc: Document) -> list[Use]:
+    """Every package name ``doc`` uses, in the order written: the ``$(find NAME)`` of the
+    files xacro read (comments left out), then the ``package://`` references."""
+    found: list[Use] = []
+    for source in getattr(doc.origin, "files", ()):
+        data = COMMENT_RE.sub(lambda m: re.sub(rb"[^\n]", b" ", m.group()), source.data)
+        path = None if source.shown == doc.path else source.shown
+        for match in FIND_USE_RE.finditer(data):
+            line = data.count(b"\n", 0, match.start()) + 1
+            column = match.start() - (data.rfind(b"\n", 0, match.start()) + 1) + 1
+            found.append(Use(match.group(1).decode("utf-8", "replace"), None, path, line, column))
+    for ref in file_references(doc):
+        name = package_of(ref.uri)
+        if name is not None:
+            found.append(Use(name, ref.element))
+    return found

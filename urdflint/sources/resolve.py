@@ -1,18 +1,26 @@
 """Where a mesh or ``$(find pkg)`` points: ``package://``, ``file://`` and relative paths, no ROS.
 
 Package folders are found, in order, from explicit package paths (``--package-path
-NAME=DIR``, then ``package-paths`` in the configuration), the workspace (every
+NAME=DIR``, then ``package-paths`` in the configuration), the package that holds the file
+(its nearest ``package.xml``, when that is the name asked for), the workspace (every
 ``package.xml`` below the checked paths and their git root), ``ROS_PACKAGE_PATH``,
 ``AMENT_PREFIX_PATH`` (``share/NAME``), and a ``package.xml`` search upward from the
 URDF (each ancestor folder and its direct sub-folders). With ``root`` set (the HTTP
-service), every answer must lie inside ``root`` and nothing outside it is searched.
+service), every answer must lie inside ``root`` and only explicit package paths and the
+workspace given are searched.
+
+Where the workspace or the upward search holds several packages of one name, the one
+nearest to the file wins (the deepest folder they share), so the answer does not depend on
+what else the repository holds; packages as near as the chosen one are its ``ties``
+(C017 reports them: the choice between them is arbitrary, and colcon refuses such a
+workspace).
 """
 
 from __future__ import annotations
 
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -22,6 +30,7 @@ from urdflint.cache import deps
 NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 SCHEME_RE = re.compile(r"^([a-zA-Z][a-zA-Z0-9+.-]*):")
 MAX_PACKAGE_XML_BYTES = 1 << 20
+MAX_LEVELS = 12  # folders searched above a file for the package that holds it
 # package://mesh.stl: resource_retriever (RViz, robot_state_publisher users) and Gazebo take
 # "mesh.stl" as the package name and find no file; PyBullet strips the scheme and reads it
 # relative to the URDF.
@@ -43,6 +52,64 @@ class Resolved:
     @property
     def found(self) -> bool:
         return self.path is not None and self.problem is None
+
+
+@dataclass(frozen=True, slots=True)
+class Lookup:
+    """Where package ``name`` was found (``folder`` is ``None`` when it was not), how
+    (``how``: one phrase, for ``--show-packages``), the places looked at, and the other
+    packages of that name as near to the file as the chosen one (``ties``)."""
+
+    name: str
+    folder: Path | None
+    tried: tuple[str, ...] = ()
+    how: str = ""
+    ties: tuple[Path, ...] = ()
+
+
+def candidates(workspace: Mapping[str, Path], name: str) -> tuple[Path, ...]:
+    """Every folder of package ``name`` in ``workspace``: a workspace index
+    (:class:`urdflint.sources.workspace.Packages`) lists each package of a name, a plain
+    mapping one."""
+    listed = getattr(workspace, "candidates", None)
+    if listed is not None:
+        return tuple(listed(name))
+    folder = workspace.get(name)
+    return (folder,) if folder is not None else ()
+
+
+def nearest(folders: Sequence[Path], near: Path | None) -> tuple[Path, tuple[Path, ...]]:
+    """The folder of ``folders`` nearest to ``near`` (the deepest folder they share; the
+    first listed among equals), and the others as near as it."""
+    if near is None:
+        return folders[0], tuple(folders[1:])
+    here = os.path.abspath(near)
+    shared = [_shared(here, os.path.abspath(folder)) for folder in folders]
+    best = max(shared)
+    index = shared.index(best)
+    ties = tuple(f for i, f in enumerate(folders) if shared[i] == best and i != index)
+    return folders[index], ties
+
+
+def _shared(a: str, b: str) -> int:
+    try:
+        return len(Path(os.path.commonpath([a, b])).parts)
+    except ValueError:  # another drive
+        return 0
+
+
+def holder(folder: Path, stop: Path | None = None) -> Path | None:
+    """The package that holds ``folder``: the nearest folder at or above it with a
+    ``package.xml`` (not above ``stop`` when given)."""
+    for level, ancestor in enumerate((folder, *folder.parents)):
+        if level >= MAX_LEVELS or (stop is not None and not ancestor.is_relative_to(stop)):
+            return None
+        try:
+            if (ancestor / "package.xml").is_file():
+                return ancestor
+        except OSError:
+            return None
+    return None
 
 
 @lru_cache(maxsize=4096)
@@ -97,50 +164,71 @@ class Resolver:
             if root
             else [Path(p) for p in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
         )
-        self._packages: dict[str, tuple[Path | None, tuple[str, ...]]] = {}
+        self._packages: dict[str, Lookup] = {}
 
     # -- packages ------------------------------------------------------------------
 
     def package_dir(self, name: str) -> Path | None:
-        return self.find_package(name)[0]
+        return self.lookup(name).folder
 
     def find_package(self, name: str) -> tuple[Path | None, tuple[str, ...]]:
         """The folder of package ``name`` and the places looked at, in order."""
+        found = self.lookup(name)
+        return found.folder, found.tried
+
+    def lookup(self, name: str) -> Lookup:
+        """Where package ``name`` is, how it was found, and its ties (see the module doc)."""
         if name not in self._packages:
             self._packages[name] = self._search(name)
         return self._packages[name]
 
-    def _search(self, name: str) -> tuple[Path | None, tuple[str, ...]]:
+    def _search(self, name: str) -> Lookup:
         tried: list[str] = []
         if name in self.package_paths:
             folder = self.package_paths[name]
             tried.append(f"package path {name}={folder}")
             if folder.is_dir() and self._inside(folder):
-                return folder, tuple(tried)
+                return Lookup(name, folder, tuple(tried), "package path")
             deps.note_absent(folder)
-        if name in self.workspace:
-            folder = self.workspace[name]
+        own = self._own(name)
+        if own is not None:
+            tried.append(f"the package holding the file, {name} at {own}")
+            return Lookup(name, own, tuple(tried), "the package holding the file")
+        found = [f for f in candidates(self.workspace, name) if f.is_dir() and self._inside(f)]
+        if found:
+            folder, ties = nearest(found, self.base_dir)
             tried.append(f"workspace package {name} at {folder}")
-            if folder.is_dir() and self._inside(folder):
-                return folder, tuple(tried)
+            how = "workspace" if len(found) == 1 else f"workspace, nearest of {len(found)}"
+            return Lookup(name, folder, tuple(tried), how, ties)
         for base in self.ros_paths:
             tried.append(f"ROS_PACKAGE_PATH {base}")
-            found = self._below(base, name, depth=3)
-            if found is not None:
-                return found, tuple(tried)
+            below = self._below(base, name, depth=3)
+            if below is not None:
+                return Lookup(name, below, tuple(tried), f"ROS_PACKAGE_PATH {base}")
         for prefix in self.ament:
             folder = prefix / "share" / name
             tried.append(f"AMENT_PREFIX_PATH {folder}")
             if folder.is_dir():
-                return folder, tuple(tried)
+                return Lookup(name, folder, tuple(tried), f"AMENT_PREFIX_PATH {prefix}")
             deps.note_absent(folder)
         if self.base_dir is not None and self.root is None:
             tried.append(f"package.xml named {name!r} above {self.base_dir}")
             for ancestor in (self.base_dir, *self.base_dir.parents):
-                for folder in (ancestor, *_subdirs(ancestor)):
-                    if package_name(folder) == name:
-                        return folder, tuple(tried)
-        return None, tuple(tried)
+                level = [f for f in (ancestor, *_subdirs(ancestor)) if package_name(f) == name]
+                if level:
+                    how = "a package.xml above the file"
+                    return Lookup(name, level[0], tuple(tried), how, tuple(level[1:]))
+        return Lookup(name, None, tuple(tried))
+
+    def _own(self, name: str) -> Path | None:
+        """The package holding the file, when it is package ``name``: it always wins (on
+        the command line; a confined resolver sees only the package paths it is given)."""
+        if self.base_dir is None or self.root is not None:
+            return None
+        folder = holder(self.base_dir.absolute())
+        if folder is None or package_name(folder) != name:
+            return None
+        return folder
 
     def _below(self, base: Path, name: str, depth: int) -> Path | None:
         if package_name(base) == name:

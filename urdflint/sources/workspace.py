@@ -3,7 +3,9 @@ below their git root, as ``colcon`` and ``catkin`` would find them in a workspac
 
 A folder with a ``package.xml`` is a package (packages do not nest, so the walk does not
 descend into it); folders marked ``COLCON_IGNORE``, ``CATKIN_IGNORE`` or ``AMENT_IGNORE``,
-hidden folders and build outputs are skipped, as the ROS build tools skip them.
+hidden folders and build outputs are skipped, as the ROS build tools skip them. Every
+package of a name is kept (a repository may hold a ROS 1 and a ROS 2 ``ur_description``):
+the resolver takes the one nearest to the file that asks (:func:`resolve.nearest`).
 """
 
 from __future__ import annotations
@@ -51,17 +53,45 @@ def roots_for(paths: Iterable[Path]) -> list[Path]:
     return list(dict.fromkeys(found))
 
 
-def packages_below(roots: Iterable[Path]) -> dict[str, Path]:
-    """Package name -> folder for every package below ``roots`` (the first found wins)."""
-    packages: dict[str, Path] = {}
+class Found(dict[str, Path]):
+    """Package name -> the first package of that name the walk found; ``every`` lists every
+    package, several of one name included (the resolver takes the one nearest to a file)."""
+
+    def __init__(self, every: list[tuple[str, Path]]) -> None:
+        super().__init__()
+        self.every = every
+        for name, folder in every:
+            self.setdefault(name, folder)
+
+    def candidates(self, name: str) -> tuple[Path, ...]:
+        return tuple(folder for found, folder in self.every if found == name)
+
+
+def packages_below(roots: Iterable[Path]) -> Found:
+    """Every package below ``roots`` (see :class:`Found`)."""
+    return Found(listing(roots))
+
+
+def listing(roots: Iterable[Path]) -> list[tuple[str, Path]]:
+    """``(name, folder)`` of every package below ``roots``, in the order of the walk (the
+    roots in turn, each depth first by name); a folder reached twice (a symbolic link)
+    is listed once."""
+    found: list[tuple[str, Path]] = []
     seen: set[Path] = set()
     budget = [MAX_FOLDERS]
     for root in roots:
-        _walk(root, packages, seen, budget)
-    return packages
+        _walk(root, found, seen, budget)
+    real: set[tuple[str, str]] = set()
+    unique = []
+    for name, folder in found:
+        key = (name, os.path.realpath(folder))
+        if key not in real:
+            real.add(key)
+            unique.append((name, folder))
+    return unique
 
 
-def _walk(root: Path, packages: dict[str, Path], seen: set[Path], budget: list[int]) -> None:
+def _walk(root: Path, found: list[tuple[str, Path]], seen: set[Path], budget: list[int]) -> None:
     stack = [root]
     while stack and budget[0] > 0:
         folder = stack.pop()
@@ -78,7 +108,7 @@ def _walk(root: Path, packages: dict[str, Path], seen: set[Path], budget: list[i
         if "package.xml" in names:
             name = package_name(folder)
             if name is not None:
-                packages.setdefault(name, folder)
+                found.append((name, folder))
                 continue
         subs = sorted(
             (n for n in names if not n.startswith(".") and n not in SKIP_DIRS), reverse=True
@@ -86,7 +116,7 @@ def _walk(root: Path, packages: dict[str, Path], seen: set[Path], budget: list[i
         stack.extend(folder / n for n in subs if (folder / n).is_dir())
 
 
-def discover(paths: Iterable[Path]) -> dict[str, Path]:
+def discover(paths: Iterable[Path]) -> Found:
     """The packages a run over ``paths`` can use for ``$(find)`` and ``package://``."""
     return packages_below(roots_for(paths))
 
@@ -108,6 +138,7 @@ class Packages(Mapping[str, Path]):
         if cache is not None:
             _CACHE = cache
         self._found: dict[str, Path] | None = None
+        self._all: dict[str, tuple[Path, ...]] = {}
         self._digest = ""
         self.key = json.dumps(sorted({str(p.resolve()) for p in self.paths}))
 
@@ -122,14 +153,31 @@ class Packages(Mapping[str, Path]):
                     listed = cache.result("packages", (self.key,), self._discover)  # type: ignore[attr-defined]
             else:
                 listed = self._discover()
-            self._found = {name: Path(folder) for name, folder in listed}
+            every: dict[str, list[Path]] = {}
+            for name, folder in listed:
+                every.setdefault(name, []).append(Path(folder))
+            self._all = {name: tuple(folders) for name, folders in every.items()}
+            self._found = {name: folders[0] for name, folders in self._all.items()}
             self._digest = _digest(listed)
             _LIVE[self.key] = self
         deps.note("packages", self.key, self._digest)
         return self._found
 
     def _discover(self) -> list[tuple[str, str]]:
-        return sorted((name, str(folder)) for name, folder in discover(self.paths).items())
+        # by name; a name's packages stay in the order of the walk (the sort is stable)
+        found = discover(self.paths).every
+        return sorted(((name, str(folder)) for name, folder in found), key=lambda p: p[0])
+
+    def candidates(self, name: str) -> tuple[Path, ...]:
+        """Every package named ``name``, the first found first (one, unless the workspace
+        holds several of that name)."""
+        self.found  # noqa: B018 - builds (or checks) the index
+        return self._all.get(name, ())
+
+    def duplicates(self) -> dict[str, tuple[Path, ...]]:
+        """The names the workspace holds more than one package of."""
+        self.found  # noqa: B018
+        return {name: folders for name, folders in self._all.items() if len(folders) > 1}
 
     def __getitem__(self, name: str) -> Path:
         return self.found[name]
