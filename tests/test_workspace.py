@@ -165,6 +165,91 @@ def test_a_library_given_alone_is_checked_through_its_entries(ws: Path) -> None:
     assert discovery.as_entries([str(lonely)], packages) == [str(lonely)]
 
 
+JACKAL = FIXTURES / "discovery" / "jackal_description"  # cut down from jackal/jackal
+
+
+def test_a_placeholder_urdf_included_through_an_argument_is_not_a_robot() -> None:
+    """husky.urdf.xacro includes ``$(arg urdf_extras)``, whose default is
+    ``$(optenv HUSKY_URDF_EXTRAS empty.urdf)``: empty.urdf is checked through it (it got
+    S011 and X003 as a robot of its own)."""
+    husky = PACKAGES / "husky_description"
+    files, errors = discovery.collect([str(husky)], workspace.discover([PACKAGES]))
+    assert errors == [] and files == [str(husky / "urdf" / "husky.urdf.xacro")]
+    empty = husky / "urdf" / "empty.urdf"
+    assert discovery.fragment(empty) == "its <robot> has no name and no <link>"
+    found = discovery.as_entries([str(empty)], workspace.discover([PACKAGES]))
+    assert [Path(f).resolve() for f in found] == [(husky / "urdf/husky.urdf.xacro").resolve()]
+
+
+def test_a_xacro_snippet_named_urdf_is_one_fragment_note() -> None:
+    """jackal's custom_example.urdf (macro calls and joints for JACKAL_URDF_EXTRAS) got 16
+    S003, 9 X008 and 2 X003 (with empty.urdf's) as robots; now one X011 note."""
+    files, errors = discovery.collect([str(JACKAL)], workspace.discover([JACKAL]))
+    assert errors == [] and [Path(f).name for f in files] == [
+        "custom_example.urdf",  # nobody includes it: its note
+        "jackal.urdf.xacro",  # empty.urdf: $(optenv JACKAL_URDF_EXTRAS empty.urdf)
+    ]
+    assert discovery.fragment(JACKAL / "urdf" / "custom_example.urdf") == (
+        "its <robot> has no name and uses xacro (<xacro:camera_mount>)"
+    )
+    proc = run_cli("--format", "json", "--show-info", str(JACKAL), cwd=ROOT)
+    assert proc.returncode == 0, proc.stderr
+    report = json.loads(proc.stdout)
+    assert [(Path(f["path"]).name, f["line"], f["code"], f["severity"]) for f in
+            report["findings"]] == [("custom_example.urdf", 1, "X011", "info")]  # fmt: skip
+    assert report["findings"][0]["message"].startswith(
+        "a fragment of a robot, not checked on its own: its <robot> has no name and uses xacro"
+    )
+    assert report["summary"]["files"] == 2
+
+
+def test_what_is_a_fragment_and_what_stays_a_robot(tmp_path: Path) -> None:
+    cases = {
+        "gazebo.urdf": ('<gazebo reference="a"><material>Gazebo/Red</material></gazebo>',
+                        "its root element is <gazebo>, a part of a <robot>"),
+        "library.urdf": (f'<robot name="l" {NS}><xacro:macro name="m"/></robot>',
+                         "it only defines xacro macros and properties"),
+        "sdf.urdf": ('<sdf version="1.6"><model name="m"/></sdf>', None),  # X002 says it
+        "broken.urdf": ("<robot><link", None),  # X001 says it
+        # an export that kept xacro: a robot (X008 says what needs expanding)
+        "export.urdf": (f'<robot name="r" {NS}><xacro:property name="p" value="1"/>'
+                        '<link name="a"/></robot>', None),
+        "named.urdf": ('<robot name="r"/>', None),  # S011 says it
+    }  # fmt: skip
+    for name, (text, why) in cases.items():
+        (tmp_path / name).write_text(text)
+        assert discovery.fragment(tmp_path / name) == why, name
+
+
+def test_an_include_through_argument_and_environment_defaults(tmp_path: Path) -> None:
+    (tmp_path / "extras.urdf").write_text("<robot/>")
+    (tmp_path / "more.urdf").write_text("<robot/>")
+    (tmp_path / "robot.urdf.xacro").write_text(
+        f'<robot name="r" {NS}>\n'
+        '  <xacro:arg name="extras" default="$(optenv EXTRAS extras.urdf)"/>\n'
+        '  <xacro:include filename="$(arg extras)"/>\n'
+        '  <xacro:include filename="$(optenv MORE more.urdf)"/>\n'
+        '  <xacro:include filename="$(optenv NOTHING)"/>\n'
+        '  <link name="a"/>\n</robot>\n'
+    )
+    files, _ = discovery.collect([str(tmp_path)], {})
+    assert [Path(f).name for f in files] == ["robot.urdf.xacro"]
+
+
+def test_every_package_of_a_name_is_kept_and_the_nearest_wins(tmp_path: Path) -> None:
+    from urdflint.sources.resolve import Resolver, nearest
+
+    first = package(tmp_path / "robots" / "hyq" / "meshes" / "erd", "erd")
+    second = package(tmp_path / "robots" / "solo12" / "meshes" / "erd", "erd")
+    index = workspace.Packages([tmp_path])
+    assert index.candidates("erd") == (first, second) and index["erd"] == first
+    assert index.duplicates() == {"erd": (first, second)}
+    assert nearest([first, second], tmp_path / "robots" / "solo12") == (second, ())
+    assert nearest([first, second], tmp_path / "robots") == (first, (second,))
+    found = Resolver(tmp_path / "robots" / "solo12", workspace=index, environ={}).lookup("erd")
+    assert (found.folder, found.how, found.ties) == (second, "workspace, nearest of 2", ())
+
+
 # -- one defect, one finding, with its call chain ----------------------------------------------
 
 

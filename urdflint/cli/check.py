@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint import __version__
-from urdflint.cli import fix, show_packages
+from urdflint.cli import fix, fragments, show_packages
 from urdflint.cli.check_options import add_parser
 from urdflint.cli.common import (
     EXIT_ERROR,
@@ -60,6 +60,7 @@ def run(args: argparse.Namespace) -> int:
     context = run_context(args, open_cache(args, here))
     files, errors = collect(args.paths, context.workspace)
     files = as_entries(_changed_only(args, files), context.workspace)
+    robots, pieces = fragments.split(files)  # a *.urdf fragment nobody includes: one note
     if args.show_packages:
         show_packages.write(files, context, finder, sys.stderr)
     accepted = _load_baseline(args)

@@ -1,15 +1,23 @@
 """Which files a run lints: the paths given, and in folders the robot descriptions.
 
-A folder yields every ``*.urdf`` and the *entry* xacro files: the ``*.xacro`` files
-(``*.urdf.xacro`` included) that no other xacro file of the folder includes, and that are
-robots themselves: links, joints or macro calls under ``<robot>``, not only definitions.
+A folder yields the *entry* files: the ``*.urdf`` and ``*.xacro`` files (``*.urdf.xacro``
+included) that no xacro file of the folder includes, and, for xacro, that are robots
+themselves: links, joints or macro calls under ``<robot>``, not only definitions.
 Macro libraries and fragments, the files only included by others, are checked as part of
-the entry files that include them, so a file is never reported twice.
+the entry files that include them, so a file is never reported twice. An include names
+its file literally, through ``$(find pkg)``, or through the default of ``$(optenv VAR
+default)`` and of a ``<xacro:arg>`` of the same file (husky's ``$(arg urdf_extras)``,
+whose default is ``$(optenv HUSKY_URDF_EXTRAS empty.urdf)``).
+
+A ``*.urdf`` that nobody includes and that is no robot (:func:`fragment`: another root than
+``<robot>``, or xacro markup in a nameless ``<robot>``) is a fragment: the run reports it
+once (X011) instead of linting it as a broken robot.
 """
 
 from __future__ import annotations
 
 import fnmatch
+import functools
 import os
 import re
 from collections.abc import Callable, Mapping, Sequence
@@ -18,11 +26,18 @@ from pathlib import Path
 from lxml import etree
 
 from urdflint.model.document import XACRO_NS, make_parser
+from urdflint.model.parsing import local_tag, parse
+from urdflint.model.schema import SPECS
+from urdflint.sources.resolve import candidates, nearest
 
 SKIP_DIRS = {"node_modules", "__pycache__", "build", "install", "log"}
 MAX_SCAN_BYTES = 2 * 2**20  # a bigger xacro file is linted, not scanned for includes
 INCLUDE_RE = re.compile(rb"<[\w.-]*:?include\b[^>]*?\bfilename\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
 FIND_RE = re.compile(r"^\$\((?:find|find-pkg-share)\s+([^)\s]+)\)(.*)$")
+ARG_RE = re.compile(r"\$\(arg\s+([^)\s]+)\)")
+OPTENV_RE = re.compile(r"\$\(optenv\s+[^)\s]+\s+([^)$]*)\)")
+XACRO_ARG_RE = re.compile(rb"<[\w.-]*:?arg\b([^>]*)>")
+ATTR_RE = re.compile(rb"\b(name|default)\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
 EXPR_RE = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
 DEFINITIONS = frozenset({"macro", "property", "arg", "include"})
 SRDF_SUFFIXES = (".srdf.xacro", ".srdf.xml.xacro")
@@ -30,6 +45,8 @@ SRDF_TAGS = frozenset(
     {"group", "group_state", "end_effector", "virtual_joint", "passive_joint", "disable_collisions"}
 )
 CONDITIONS = frozenset({"if", "unless"})
+ROOT_TAG_RE = re.compile(r"root element is <([^>]+)>")
+NAMED_ROBOT_RE = re.compile(rb"<robot\b[^>]*\bname\s*=\s*[\"'][^\"']")
 
 
 def collect(
@@ -45,8 +62,8 @@ def collect(
         path = Path(raw)
         if path.is_dir():
             urdfs, xacros = _below(path)
-            found = entries(xacros, packages if packages is not None else {}) if xacros else []
-            files.extend(str(p) for p in sorted(urdfs + found))
+            found = entries(xacros, packages if packages is not None else {}, urdfs)
+            files.extend(str(p) for p in sorted(found))
         elif path.is_file():
             files.append(raw)
         elif path.exists():
@@ -70,8 +87,11 @@ def _below(folder: Path) -> tuple[list[Path], list[Path]]:
     return urdfs, xacros
 
 
-def entries(xacros: Sequence[Path], packages: Mapping[str, Path]) -> list[Path]:
-    """The xacro files among ``xacros`` that are robots of their own (see the module doc)."""
+def entries(
+    xacros: Sequence[Path], packages: Mapping[str, Path], urdfs: Sequence[Path] = ()
+) -> list[Path]:
+    """The files among ``xacros`` and ``urdfs`` that are robots of their own, or fragments
+    nobody includes (see the module doc)."""
     patterns: list[str] = []
     texts: dict[Path, bytes | None] = {}
     for path in xacros:
@@ -82,13 +102,12 @@ def entries(xacros: Sequence[Path], packages: Mapping[str, Path]) -> list[Path]:
     included = _matcher(patterns)
     found: list[Path] = []
     for path in xacros:
-        full = os.path.normpath(os.path.abspath(path))
-        if included(full):
+        if included(os.path.normpath(os.path.abspath(path))):
             continue  # included by another file: checked there
         data = texts[path]
         if data is None or is_robot(data, path.name.lower().endswith(".urdf.xacro")):
             found.append(path)
-    return found
+    return found + [p for p in urdfs if not included(os.path.normpath(os.path.abspath(p)))]
 
 
 def _matcher(patterns: list[str]) -> Callable[[str], bool]:
@@ -113,14 +132,19 @@ def _read(path: Path) -> bytes | None:
 def _include_patterns(path: Path, data: bytes, packages: Mapping[str, Path]) -> list[str]:
     """What the file's ``<xacro:include>`` tags can name, as absolute glob patterns."""
     patterns: list[str] = []
+    args: dict[str, str] | None = None
     for match in INCLUDE_RE.finditer(data):
         spec = (match.group(1) or match.group(2) or b"").decode("utf-8", "replace").strip()
+        if "$(arg" in spec:
+            args = _arg_defaults(data) if args is None else args
+        spec = _defaults(spec, args or {})
         if not spec:
             continue
         found = FIND_RE.match(spec)
         if found is not None:
             package, rest = found.group(1), found.group(2)
-            folder = packages.get(package)
+            folders = candidates(packages, package)
+            folder = nearest(folders, path.parent)[0] if folders else None
             base = os.path.abspath(folder) if folder is not None else "*" + os.sep + package
             pattern = base + EXPR_RE.sub("*", rest)
         elif spec.startswith("$(") or spec.startswith("${"):
@@ -130,6 +154,25 @@ def _include_patterns(path: Path, data: bytes, packages: Mapping[str, Path]) -> 
         if _specific(pattern):
             patterns.append(os.path.normpath(pattern) if "*" not in pattern[:1] else pattern)
     return patterns
+
+
+def _defaults(spec: str, args: Mapping[str, str]) -> str:
+    """``spec`` as xacro reads it when nothing is set: each ``$(arg NAME)`` replaced by
+    the default the file gives it, then each ``$(optenv VAR default)`` by its default."""
+    for _ in range(3):  # a default may name another argument
+        spec = ARG_RE.sub(lambda m: args.get(m.group(1), m.group(0)), spec)
+    return OPTENV_RE.sub(lambda m: m.group(1).strip(), spec).strip()
+
+
+def _arg_defaults(data: bytes) -> dict[str, str]:
+    """``NAME -> default`` of the file's ``<xacro:arg>`` declarations."""
+    found: dict[str, str] = {}
+    for match in XACRO_ARG_RE.finditer(data):
+        attrs = {m.group(1): m.group(2) or m.group(3) or b"" for m in ATTR_RE.finditer(match[1])}
+        if b"name" in attrs and b"default" in attrs:
+            name = attrs[b"name"].decode("utf-8", "replace")
+            found.setdefault(name, attrs[b"default"].decode("utf-8", "replace"))
+    return found
 
 
 def _specific(pattern: str) -> bool:
@@ -183,16 +226,15 @@ MAX_GRAPH_FILES = 5000  # xacro files scanned to find who includes a library
 
 
 def as_entries(files: Sequence[str], packages: Mapping[str, Path]) -> list[str]:
-    """``files`` with each xacro library or fragment replaced by the entry files that include
-    it (directly or through other libraries), found among the workspace's packages and the
-    file's own folder tree. A library nobody includes stays as given (it gets its X011 note),
-    and so does every robot file."""
+    """``files`` with each xacro library or fragment, and each ``*.urdf`` fragment, replaced by
+    the entry files that include it (directly or through other libraries), found among the
+    workspace's packages and the file's own folder tree. A library nobody includes stays as
+    given (it gets its X011 note), and so does every robot file."""
     out: list[str] = []
     graph: _IncludeGraph | None = None
     for name in files:
         path = Path(name)
-        data = _read(path) if name != "-" and name.lower().endswith(".xacro") else None
-        if data is None or is_robot(data, name.lower().endswith(".urdf.xacro")):
+        if name == "-" or not _library(path):
             out.append(name)
             continue
         graph = graph or _IncludeGraph(packages, [path.parent])
@@ -203,6 +245,61 @@ def as_entries(files: Sequence[str], packages: Mapping[str, Path]) -> list[str]:
         else:
             out.append(name)
     return list(dict.fromkeys(out))
+
+
+def _library(path: Path) -> bool:
+    """A xacro file that is not a robot, or a ``*.urdf`` fragment."""
+    lower = path.name.lower()
+    if lower.endswith(".urdf"):
+        return fragment(path) is not None
+    data = _read(path) if lower.endswith(".xacro") else None
+    return data is not None and not is_robot(data, lower.endswith(".urdf.xacro"))
+
+
+def fragment(path: Path) -> str | None:
+    """Why the ``*.urdf`` file ``path`` is a fragment, not a robot, or ``None`` (a robot, or
+    a file that is not well-formed or not URDF at all, whose error is reported): its root
+    element is one a ``<robot>`` holds (``<gazebo>``, ``<link>``...) or a xacro element; its
+    ``<robot>`` has no name and holds xacro markup or no ``<link>``; or it only defines xacro
+    macros and properties. A named robot with xacro markup stays a robot (X008 says it needs
+    expanding): real ``.urdf`` exports often keep some (14 of the 36 corpus robots)."""
+    if not path.name.lower().endswith(".urdf"):
+        return None
+    try:
+        stat = path.stat()
+    except OSError:
+        return None
+    return _fragment(os.path.abspath(path), stat.st_size, stat.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=256)
+def _fragment(full: str, size: int, mtime: int) -> str | None:
+    data = _read(Path(full))
+    if data is None or (b"xacro" not in data and NAMED_ROBOT_RE.search(data)):
+        return None
+    parsed = parse(data)
+    root, problem = parsed.root, parsed.problem
+    if root is None or parsed.recovered:
+        message = problem.message if problem is not None and problem.code == "X002" else ""
+        tag = ROOT_TAG_RE.match(message)
+        if tag is None or not (tag[1] in SPECS["robot"].children or tag[1].startswith("xacro:")):
+            return None  # not a robot's piece (an SDF file): X002 says what it is
+        return f"its root element is <{tag[1]}>, a part of a <robot>"
+    markup = next((local_tag(el) for el in root.iter() if _is_xacro(el)), None)
+    if not root.get("name"):
+        if markup is not None:
+            return f"its <robot> has no name and uses xacro (<{markup}>)"
+        if root.find("link") is None:
+            return "its <robot> has no name and no <link>"
+    elif markup is not None and not _has_content(root, True):
+        return "it only defines xacro macros and properties"
+    return None
+
+
+def _is_xacro(el: etree._Element) -> bool:
+    if not isinstance(el.tag, str):
+        return False
+    return el.prefix == "xacro" or etree.QName(el).namespace == XACRO_NS
 
 
 def _shown(path: Path) -> str:
