@@ -125,6 +125,8 @@ def _lint_files(
         outcome.expects = outcome.expects or expect.mass is not None or expect.com is not None
         outcome.models[done.shown] = done.model
         outcome.matrix.extend(done.matrix)
+        if done.targets is not None:
+            outcome.targets[done.shown] = done.targets
 
 
 def _task(args: argparse.Namespace, name: str, finder: SettingsFinder) -> Any:

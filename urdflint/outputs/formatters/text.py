@@ -20,6 +20,9 @@ MAX_CODES = 6  # rules named in the info summary line
 def render(findings: Sequence[Finding], run: RunInfo) -> str:
     lines: list[str] = []
     hidden: list[Finding] = []
+    # each finding's per-target line when the user chose several targets; for inferred or
+    # assumed ones the targets line says which, and --matrix sums the effects up
+    chosen = all(t.get("how", "given") == "given" for t in run.targets.values() if t)
     for f in findings:
         if f.severity is Severity.INFO and not run.show_info:
             hidden.append(f)
@@ -28,7 +31,7 @@ def render(findings: Sequence[Finding], run: RunInfo) -> str:
             f"{f.path}:{f.line}:{f.column}: {f.severity} {f.code} {f.name}: {f.message}{mark(f)}"
         )
         lines.extend(f"    {call}" for call in f.trace)  # xacro: the macro calls, innermost first
-        effects = matrix_text.effects_line(f)
+        effects = matrix_text.effects_line(f) if chosen else None
         if effects:
             lines.append(f"    {effects}")
     if hidden:
