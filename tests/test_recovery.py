@@ -152,9 +152,12 @@ def test_the_physics_rules_run_on_a_repaired_tree_not_on_a_recovered_one() -> No
     if not optional.available("pinocchio"):
         pytest.skip("Pinocchio is not installed")
     # Pinocchio reads the file itself; its urdfdom (TinyXML2) ignores the version 0.0
-    (p001,) = [
-        f for f in lint_file(RECOVERED_MODELS / "bike_declaration_version.urdf") if f.code == "P001"
-    ]
+    bike = RECOVERED_MODELS / "bike_declaration_version.urdf"
+    found = lint_file(bike)
+    assert "P001" not in {f.code for f in found}  # X004 is the cause, reported (issue 24, 3)
+    assert any(f.code == "X004" and "0.07," in f.message and not _marked(f) for f in found)
+    quiet = config.Settings(ignore=("X004",))
+    (p001,) = [f for f in lint_file(bike, settings=quiet) if f.code == "P001"]
     assert "[0.07,]" in p001.message and not _marked(p001)
     codes = {f.code for f in lint_file(RECOVERED_MODELS / "biped2d_trailing_text.urdf")}
     assert not {c for c in codes if c.startswith("P")}

@@ -78,6 +78,10 @@ def check(doc: Document) -> Iterator[Hit]:
         return
     if root is None:
         return
+    if doc.recovered and not any(
+        link.inertial is not None or link.visuals or link.collisions for link in doc.links
+    ):
+        return  # frames recovered from a broken file: what is missing may be cut off
     b = bodies(doc)
     members = [name for name, _, _ in b.members(root)]
     masses = [i.mass for n in members if (i := b.inertials.get(n)) is not None]

@@ -76,7 +76,7 @@ def test_raw_xml_gives_the_cli_document_plus_passed(client: TestClient) -> None:
     r = xml(client, robot(), filename="arm.urdf")
     assert r.status_code == 200
     data = r.json()
-    assert list(data) == ["version", "tool", "findings", "summary", "models", "passed"]
+    assert list(data) == ["version", "tool", "findings", "summary", "models", "targets", "passed"]
     assert data["summary"]["files"] == 1
     assert data["passed"] is True
     assert set(data["models"]) == {"arm.urdf"}

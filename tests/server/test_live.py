@@ -61,6 +61,10 @@ def normalised(document: dict[str, Any]) -> dict[str, Any]:
         for edit in (finding.get("autofix") or {}).get("edits", []):
             edit["path"] = Path(edit["path"]).name
     data["models"] = {Path(k).name: v for k, v in data.get("models", {}).items()}
+    data["targets"] = {Path(k).name: v for k, v in data.get("targets", {}).items()}
+    for chosen in data["targets"].values():
+        for evidence in chosen["evidence"]:
+            evidence["path"] = evidence["path"] and Path(evidence["path"]).name
     data.pop("passed", None)
     return data
 

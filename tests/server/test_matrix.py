@@ -260,8 +260,8 @@ def test_serve_allow_confirm_reaches_the_app(monkeypatch: pytest.MonkeyPatch) ->
 
 def test_option_parsing_units() -> None:
     parsed = options.parse(options.merge([("matrix", "true")]))
-    assert parsed.matrix and parsed.settings.targets == targets.DEFAULT_TARGETS  # a display
-    assert options.parse(options.merge([])).settings.targets == targets.DEFAULT_TARGETS
+    assert parsed.matrix and parsed.settings.targets == ()  # a display: still inferred
+    assert options.parse(options.merge([])).settings.targets == ()  # inferred, as the CLI
     kept = options.parse(options.merge([("matrix", "on"), ("target", "drake")]))
     assert kept.settings.targets == ("drake",)
     allowed = options.parse(options.merge([("confirm", "drake"), ("confirm", "mujoco")]), True)

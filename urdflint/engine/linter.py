@@ -15,6 +15,7 @@ from lxml import etree
 
 from urdflint.cache import deps
 from urdflint.engine import fixes, instances, registry, suppress
+from urdflint.engine.causes import BLOCKING  # the static errors that explain a P001
 from urdflint.engine.config import Settings
 from urdflint.engine.context import Context
 from urdflint.engine.inference import Targets
@@ -193,6 +194,7 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
             raw.extend((rules["U003"], Hit(m.comment, m.message)) for m in malformed)
 
     findings: list[Finding] = []
+    hushed: list[Finding] = []  # suppressed by a comment: still a cause P001 need not restate
     for rule, hit in raw:
         covering = (
             [d for d in directives if d.covers(rule.code, hit.element, doc.root)]
@@ -202,21 +204,24 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
         if covering:
             for directive in covering:
                 directive.used.add(rule.code)
+            if rule.code in BLOCKING:
+                hushed.append(stamp(doc, rule, hit, settings))
             continue
         findings.append(stamp(doc, rule, hit, settings))
     if "U002" in enabled:
         ran.append("U002")
         findings.extend(_unused(doc, directives, enabled, settings))
-    findings = _one_cause(doc, findings)
+    findings = _one_cause(doc, findings, hushed)
     findings.sort(key=Finding.sort_key)
     if doc.origin is not None:
         findings = instances.merge(findings)
     return Result(doc.path, findings, doc, skipped, tuple(sorted(ran)))
 
 
-def _one_cause(doc: Document, findings: list[Finding]) -> list[Finding]:
+def _one_cause(doc: Document, findings: list[Finding], hushed: list[Finding]) -> list[Finding]:
     """One defect, one finding: a P001 whose refusal or misreading is the consequence of a
-    static finding that is reported (its ``blocker``) goes, and that finding carries the
+    static finding that is reported, or suppressed by a comment (``hushed``: the user knows
+    the cause), goes (its ``blocker``); a reported cause carries the
     Pinocchio effect instead (when Pinocchio is a target and its own table says nothing for
     Pinocchio: a rule's table is what the engines were observed to do)."""
     if "physics" not in doc.__dict__ or not any(f.code == "P001" for f in findings):
@@ -227,7 +232,7 @@ def _one_cause(doc: Document, findings: list[Finding]) -> list[Finding]:
         return findings
     element = doc.element_path(cause.element) if cause.element is not None else None
     matches = [
-        f for f in findings
+        f for f in [*findings, *hushed]
         if (f.code, f.line) == (cause.code, cause.line) and element in (None, f.element)
     ]  # fmt: skip
     if not matches:

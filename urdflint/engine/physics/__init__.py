@@ -53,6 +53,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from urdflint.engine import causes
 from urdflint.engine.physics.blockers import HARMLESS_PLACES, VALUE_RULES, blocker, misread
 from urdflint.engine.physics.compute import compute, urdf_masses
 from urdflint.engine.physics.configuration import configuration, joint_label
@@ -100,27 +101,7 @@ __all__ = [
 ]
 
 # Static errors that explain a refusal (cited by P001 when Pinocchio refuses the model).
-BLOCKING = (
-    "X003",
-    "X004",
-    "X005",
-    "X008",
-    "X009",
-    "S001",
-    "S002",
-    "S003",
-    "S004",
-    "S005",
-    "S006",
-    "S007",
-    "S008",
-    "S010",
-    "J001",
-    "J007",
-    "J010",
-    "J013",
-    "I012",
-)
+BLOCKING = causes.BLOCKING
 # Never handed to Pinocchio: it refuses, misreads or crashes (pin 4.1: SIGSEGV on a self-parent).
 NEVER_BUILT = ("S005",)
 # Built, but read differently from the file (see the module docstring).
