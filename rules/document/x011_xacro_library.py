@@ -9,6 +9,12 @@ looks for a file of the same package that includes it). Such files get only
 the document-level checks (X); the robot rules (structure, inertia, joints,
 Gazebo references) run on the file that includes them, where they are complete.
 
+A `.urdf` file is treated alike when a folder is checked: one that a xacro file of the
+folder includes (husky's `empty.urdf` placeholder) is checked through that file, and one
+that is not a robot and that nothing includes (a `<gazebo>` snippet, a nameless `<robot>`
+with xacro markup, as jackal's `custom_example.urdf`) gets this one note instead of the
+robot rules' errors.
+
 ## Why is this bad?
 It is not a defect: it tells you that this file was not checked as a robot, so
 that a clean result is not mistaken for a checked robot. Pre-commit hooks and
