@@ -11,7 +11,7 @@ from urdflint.engine import config
 
 pytest.importorskip("pinocchio")
 
-CASES = FIXTURES / "models" / "one_cause"
+CASES = FIXTURES / "one_cause"
 
 
 def _lint(name: str, **settings: object) -> list:

@@ -2,7 +2,7 @@
 declaration or stray text they read past is blanked out and every rule checks the rest
 (issue 24, 1); what only libxml2's recovery mode can read is checked and marked.
 
-The fixtures in fixtures/models/recovered/ are cut down from PyBullet's own files
+The fixtures in fixtures/recovered/ are cut down from PyBullet's own files
 (bulletphysics/bullet3), which check_urdf and PyBullet load."""
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from urdflint.model import optional
 from urdflint.model.document import Document
 from urdflint.model.finding import Finding, Severity
 
-RECOVERED_MODELS = FIXTURES / "models" / "recovered"
+RECOVERED_MODELS = FIXTURES / "recovered"
 W, E = Severity.WARNING, Severity.ERROR
 LIMIT = "/robot/joint[@name='torso_to_rightleg']/limit"  # lower="-1.57." (X004)
 
