@@ -13,8 +13,7 @@ import pytest
 
 from tests.conftest import FIXTURES
 from urdflint.cli import main
-from urdflint.engine import config, linter
-from urdflint.engine import inference
+from urdflint.engine import config, inference, linter
 
 CASES = FIXTURES / "targets"
 
