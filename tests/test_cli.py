@@ -269,3 +269,15 @@ def test_expectations_without_pinocchio_fail_the_run(capsys, no_limit: Path, mon
     code, out, _ = run(capsys, "check", "--format", "json", "--select", "X,P,U", str(GOOD))
     [note] = [f for f in json.loads(out)["findings"] if f["code"] == "U004"]
     assert code == 0 and note["severity"] == "info"
+
+
+@pytest.mark.parametrize("target", ["nonexist.urdf", "emptydir"])
+def test_no_file_checked_is_never_no_problems(tmp_path, capsys, target: str) -> None:
+    """A path that does not exist, or a folder without robots: exit 2, an error on stderr,
+    and a summary that does not read as a clean result (issue 25)."""
+    (tmp_path / "emptydir").mkdir()
+    code = main(["check", str(tmp_path / target)])
+    out, err = capsys.readouterr()
+    assert code == 2
+    assert out.strip() == "urdflint: no files checked"
+    assert "no problems" not in out and err.startswith("urdflint: error: ")

@@ -31,6 +31,8 @@ class RunInfo:
 
 def summary_line(findings: Sequence[Finding], run: RunInfo) -> str:
     counts = run.summary(findings)
+    if not findings and not counts["files"]:
+        return "urdflint: no files checked"  # not "no problems": nothing was looked at
     if not findings:
         return f"urdflint: no problems in {_plural(counts['files'], 'file')}"
     parts = [_plural(counts[str(s)], str(s)) for s in reversed(Severity) if counts[str(s)]]
