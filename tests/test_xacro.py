@@ -166,6 +166,17 @@ def test_emit_expanded_writes_the_urdf_that_was_checked(tmp_path: Path) -> None:
     assert [f for f in again.findings if f.severity > Severity.INFO] == []
 
 
+def test_emit_expanded_writes_no_file_when_xacro_fails(tmp_path: Path) -> None:
+    """No 0-byte file, and no stale one from an earlier run passing for this one's (issue 25)."""
+    broken = tmp_path / "broken.urdf.xacro"
+    broken.write_text(f'<robot name="r" {NS}><link name="${{nowhere}}"/></robot>\n')
+    out = tmp_path / "out.urdf"
+    out.write_text("an earlier expansion\n")
+    proc = run_cli("--emit-expanded", str(out), str(broken))
+    assert proc.returncode == 1 and "X010" in proc.stdout
+    assert not out.exists()
+
+
 def test_emit_expanded_needs_one_xacro_file(tmp_path: Path) -> None:
     other = RRBOT / "urdf" / "materials.xacro"
     proc = run_cli("--emit-expanded", str(tmp_path / "x.urdf"), str(MAIN), str(other))

@@ -138,8 +138,8 @@ def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         chosen = result.targets.names if result.targets else task.settings.targets
         found = matrix.every_target(result.findings, replace(task.settings, targets=chosen), relint)
         rows = [{"path": task.shown, **row} for row in found]
-    if flags.emit_expanded and doc is not None:
-        flags.emit_expanded.write_bytes(doc.source)
+    if flags.emit_expanded:
+        _emit(flags.emit_expanded, doc)
     return Outcome(
         task.shown,
         result.findings,
@@ -150,6 +150,15 @@ def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         rows,
         targets=result.targets.to_dict() if result.targets and rows_possible(doc) else None,
     )
+
+
+def _emit(path: Path, doc: Any) -> None:
+    """``--emit-expanded``: the expanded URDF, or no file at all when xacro failed (a stale
+    file from an earlier run would pass for this one's output)."""
+    if doc is not None and doc.source and not (doc.problem and doc.problem.code == "X010"):
+        path.write_bytes(doc.source)
+    else:
+        path.unlink(missing_ok=True)
 
 
 def rows_possible(doc: Any) -> bool:
