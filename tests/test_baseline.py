@@ -223,3 +223,23 @@ def test_relative_paths_are_posix_and_relative_to_the_baseline_folder(tmp_path: 
     (tmp_path / "sub").mkdir()
     assert relative(str(tmp_path / "sub" / "m.urdf"), tmp_path) == "sub/m.urdf"
     assert relative(str(tmp_path / "m.urdf"), tmp_path / "sub") == "../m.urdf"
+
+
+def test_summaries_say_what_the_baseline_recorded_and_hid(capsys, tmp_path: Path) -> None:
+    """Never "no problems" for a file with errors: the summary counts what the baseline took
+    (issue 25)."""
+    from tests.conftest import FIXTURES
+
+    broken = tmp_path / "broken_arm.urdf"
+    shutil.copy(FIXTURES / "models" / "broken_arm.urdf", broken)
+    baseline = tmp_path / "baseline.json"
+    assert main(["check", "--write-baseline", str(baseline), str(broken)]) == 0
+    out, err = capsys.readouterr()
+    recorded = int(re.search(r"recorded (\d+) finding", err).group(1))  # type: ignore[union-attr]
+    assert recorded > 10
+    assert out.splitlines()[-1] == (
+        f"urdflint: no new problems in 1 file ({recorded} findings in the baseline)"
+    )
+    assert main(["check", "--baseline", str(baseline), str(broken)]) == 0
+    out, _ = capsys.readouterr()
+    assert out.splitlines()[-1].endswith(f"({recorded} findings in the baseline)")

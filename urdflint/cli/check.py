@@ -46,6 +46,7 @@ class Run:
     expects: bool = False
     matrix: list[dict[str, Any]] = field(default_factory=list)
     targets: dict[str, Any] = field(default_factory=dict)  # path -> its targets, how chosen
+    baselined: int = 0  # findings the baseline accepted (or --write-baseline recorded)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -98,6 +99,7 @@ def run(args: argparse.Namespace) -> int:
         show_info,
         tuple(outcome.matrix),
         outcome.targets,
+        outcome.baselined,
     )
     _write_outputs([(fmt, args.output), *reports], findings, info)
     return _exit_code(args, files, outcome, findings)
@@ -155,7 +157,10 @@ def _finish(
     if skipped and checked and (gate or "U004" in finder.for_folder(Path.cwd()).enabled()):
         findings.append(report.skipped_note(checked[0], skipped, outcome.expects))
     findings.sort(key=Finding.sort_key)
-    return _baseline_step(args, accepted, findings, outcome.ran)
+    kept = _baseline_step(args, accepted, findings, outcome.ran)
+    stale = sum(f.code == "U005" for f in kept)
+    outcome.baselined = len(findings) - (len(kept) - stale)
+    return kept
 
 
 def _exit_code(

@@ -21,6 +21,7 @@ class RunInfo:
     show_info: bool = True  # text: list infos one by one (else one summary line)
     matrix: tuple[dict[str, Any], ...] = ()  # --matrix: one row per (file, target)
     targets: dict[str, Any] = field(default_factory=dict)  # path -> the targets and how chosen
+    baselined: int = 0  # findings hidden by --baseline (recorded by --write-baseline)
 
     def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
         counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}
@@ -33,10 +34,12 @@ def summary_line(findings: Sequence[Finding], run: RunInfo) -> str:
     counts = run.summary(findings)
     if not findings and not counts["files"]:
         return "urdflint: no files checked"  # not "no problems": nothing was looked at
+    accepted = f" ({_plural(run.baselined, 'finding')} in the baseline)" if run.baselined else ""
+    files = _plural(counts["files"], "file")
     if not findings:
-        return f"urdflint: no problems in {_plural(counts['files'], 'file')}"
+        return f"urdflint: no {'new ' if accepted else ''}problems in {files}{accepted}"
     parts = [_plural(counts[str(s)], str(s)) for s in reversed(Severity) if counts[str(s)]]
-    return f"urdflint: {', '.join(parts)} in {_plural(counts['files'], 'file')}"
+    return f"urdflint: {', '.join(parts)} in {files}{accepted}"
 
 
 def targets_lines(run: RunInfo) -> list[str]:
