@@ -127,3 +127,24 @@ def test_corpus_run_parses() -> None:
     _check_counts(root)
     assert [s.get("name") for s in root.findall("testsuite")] == [str(m) for m in models]
     assert int(root.get("errors", "-1")) == 0
+
+
+def test_junit_lists_only_the_rules_that_ran(tmp_path) -> None:
+    """No passing testcase for a rule nothing asked of (issue 25): E without --confirm, N
+    without --profile, P003/P004 without expectations; with them, they are listed."""
+    import xml.etree.ElementTree as ET
+
+    from tests.conftest import FIXTURES
+    from urdflint.cli import main
+
+    model = str(FIXTURES / "models" / "example_arm.urdf")
+    plain, asked = tmp_path / "plain.xml", tmp_path / "asked.xml"
+    main(["check", "--report", f"junit:{plain}", model])
+    main(["check", "--report", f"junit:{asked}", "--profile", "industrial",
+          "--expect-mass", "3±50%", model])  # fmt: skip
+
+    def names(path) -> set[str]:
+        return {case.get("name", "")[:4] for case in ET.parse(path).getroot().iter("testcase")}
+
+    assert not {n for n in names(plain) if n[0] in "EN" or n in ("P003", "P004")}
+    assert "P003" in names(asked) and any(n.startswith("N") for n in names(asked))

@@ -177,6 +177,8 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
             continue  # a target rule for consumers this run does not aim at
         if code in ("U002", "U003"):
             continue  # produced below, from the suppressions themselves
+        if _dormant(code, settings):
+            continue  # nothing asked of it: it does not run, and reports (JUnit) do not list it
         missing = tuple(m for m in rule.needs if not optional.available(m))
         if missing:
             skipped[code] = missing
@@ -216,6 +218,20 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
     if doc.origin is not None:
         findings = instances.merge(findings)
     return Result(doc.path, findings, doc, skipped, tuple(sorted(ran)))
+
+
+def _dormant(code: str, settings: Settings) -> bool:
+    """A rule with nothing to do under these settings: the E rules without ``--confirm``,
+    the N rules without a ``--profile``, P003/P004 without an expected mass/COM (or q)."""
+    if code.startswith("E"):
+        return not settings.confirm
+    if code.startswith("N"):
+        return settings.profile is None
+    if code == "P003":
+        return settings.expect.mass is None
+    if code == "P004":  # it also checks the configuration --q names
+        return settings.expect.com is None and not settings.expect.q
+    return False
 
 
 def _one_cause(doc: Document, findings: list[Finding], hushed: list[Finding]) -> list[Finding]:
