@@ -167,18 +167,8 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
         if stop is not None and stop():
             raise Superseded(doc.path)
         rule = rules[code]
-        if rule.requires_robot and doc.root is None:
+        if not _applies(rule, doc, settings):
             continue
-        if doc.recovered and rule.family in RECOVERED_SKIPS:
-            continue
-        if doc.library and rule.family not in LIBRARY_FAMILIES:
-            continue
-        if rule.targets and rule.targets.isdisjoint(settings.targets):
-            continue  # a target rule for consumers this run does not aim at
-        if code in ("U002", "U003"):
-            continue  # produced below, from the suppressions themselves
-        if _dormant(code, settings):
-            continue  # nothing asked of it: it does not run, and reports (JUnit) do not list it
         missing = tuple(m for m in rule.needs if not optional.available(m))
         if missing:
             skipped[code] = missing
@@ -218,6 +208,22 @@ def _lint_document(doc: Document, settings: Settings) -> Result:
     if doc.origin is not None:
         findings = instances.merge(findings)
     return Result(doc.path, findings, doc, skipped, tuple(sorted(ran)))
+
+
+def _applies(rule: Rule, doc: Document, settings: Settings) -> bool:
+    """Whether ``rule`` runs on ``doc`` at all."""
+    if rule.requires_robot and doc.root is None:
+        return False
+    if doc.recovered and rule.family in RECOVERED_SKIPS:
+        return False
+    if doc.library and rule.family not in LIBRARY_FAMILIES:
+        return False
+    if rule.targets and rule.targets.isdisjoint(settings.targets):
+        return False  # a target rule for consumers this run does not aim at
+    if rule.code in ("U002", "U003"):
+        return False  # produced from the suppressions themselves, after the rules
+    # nothing asked of it: it does not run, and reports (JUnit) do not list it
+    return not _dormant(rule.code, settings)
 
 
 def _dormant(code: str, settings: Settings) -> bool:
