@@ -51,15 +51,20 @@ ENTRY = """<?xml version="1.0"?>
 """
 
 
-@pytest_lsp.fixture(config=SERVER)
-async def client(lsp_client: LanguageClient, tmp_path: Path):
-    await lsp_client.initialize_session(
+async def start(client: LanguageClient, folder: Path) -> None:
+    """Initialise a session as VS Code does, with ``folder`` as the workspace."""
+    await client.initialize_session(
         T.InitializeParams(
             capabilities=pytest_lsp.client_capabilities("visual-studio-code"),
-            root_uri=tmp_path.as_uri(),
-            workspace_folders=[T.WorkspaceFolder(tmp_path.as_uri(), "work")],
+            root_uri=folder.as_uri(),
+            workspace_folders=[T.WorkspaceFolder(folder.as_uri(), "work")],
         )
     )
+
+
+@pytest_lsp.fixture(config=SERVER)
+async def client(lsp_client: LanguageClient, tmp_path: Path):
+    await start(lsp_client, tmp_path)
     yield
     await lsp_client.shutdown_session()
 

@@ -30,6 +30,8 @@ from fastapi.testclient import TestClient  # noqa: E402
 from lsprotocol import types as T  # noqa: E402
 from pytest_lsp import ClientServerConfig, LanguageClient  # noqa: E402
 
+from tests.test_lsp import start  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
 MODELS = [
     FIXTURES / "models" / "broken_arm.urdf",  # no evidence: targets assumed
@@ -121,13 +123,7 @@ SERVER = ClientServerConfig(server_command=[sys.executable, "-m", "urdflint", "l
 
 @pytest_lsp.fixture(config=SERVER)
 async def client(lsp_client: LanguageClient, tmp_path: Path):
-    await lsp_client.initialize_session(
-        T.InitializeParams(
-            capabilities=pytest_lsp.client_capabilities("visual-studio-code"),
-            root_uri=tmp_path.as_uri(),
-            workspace_folders=[T.WorkspaceFolder(tmp_path.as_uri(), "work")],
-        )
-    )
+    await start(lsp_client, tmp_path)
     yield
     await lsp_client.shutdown_session()
 
