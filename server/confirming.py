@@ -24,7 +24,7 @@ The engine processes themselves are not under the audit hook (a new interpreter)
 read the Python installation and the model, within the runner's memory limit and timeout.
 Engines with a compiled probe (sdformat: ``pkg-config`` and ``g++`` on first use, a binary
 in the user's cache) are not run: the fence refuses those commands, so the runner finds
-the engine not installed and says so (E001).
+the engine not installed and says so (E007).
 """
 
 from __future__ import annotations

@@ -123,7 +123,7 @@ def confirm_info(limits: Limits) -> dict[str, Any]:
 
     An engine with a compiled probe (sdformat: built with ``pkg-config`` and ``g++`` on
     first use) is never run by the service, whose workers may not compile or start other
-    programs: it is reported as not installed, as its E001 note in an answer says.
+    programs: it is reported as not installed, as its E007 note in an answer says.
     """
     from urdflint.engines import runner
 

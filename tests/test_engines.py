@@ -99,7 +99,7 @@ def test_an_engine_that_is_not_installed_is_one_info_note(monkeypatch) -> None:
     monkeypatch.setattr(runner, "installed", lambda engine: False)
     findings = confirmed(MODELS / "undefined_link.urdf", *ENGINES)
     assert [(f.code, f.severity.name, f.element) for f in findings] == [
-        ("E001", "INFO", "/robot")
+        ("E007", "INFO", "/robot")
     ] * len(ENGINES)
     assert findings[0].message.endswith("is not installed: the model was not loaded in it")
 
@@ -151,7 +151,7 @@ def test_the_command_line_option(tmp_path: Path) -> None:
     assert bad.returncode == 2 and "unknown engine 'bullet'" in bad.stderr
     run = subprocess.run([*command, "--confirm", "all"], capture_output=True, text=True, cwd=ROOT)
     codes = {(f["code"], f["severity"]) for f in json.loads(run.stdout)["findings"]}
-    expected = {("E001", "error" if runner.installed(e) else "info") for e in ENGINES}
+    expected = {("E001", "error") if runner.installed(e) else ("E007", "info") for e in ENGINES}
     assert codes == expected and run.returncode == (1 if ("E001", "error") in codes else 0)
 
 

@@ -210,7 +210,7 @@ def test_a_compile_failure_is_a_not_installed_note_with_the_reason(fake, tmp_pat
     )
     findings = confirmed(MODELS / "good_arm.urdf")
     assert [(f.code, f.severity.name, f.message) for f in findings] == [
-        ("E001", "INFO", "sdformat (Gazebo): its probe did not compile (probe.cc:3:1: error: "
+        ("E007", "INFO", "sdformat (Gazebo): its probe did not compile (probe.cc:3:1: error: "
          "sdf/Root.hh: No such file), so it is not installed: the model was not loaded in it"),
     ]  # fmt: skip
     assert "libsdformat-dev" in (findings[0].fix or "")

@@ -8,9 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import FIXTURES
+from tests.conftest import FIXTURES, ROOT
 from urdflint.cli import main
 from urdflint.model.document import Document
+from urdflint.model.optional import install_command
 from urdflint.outputs import info
 
 ARM = FIXTURES / "models" / "example_arm.urdf"
@@ -126,6 +127,7 @@ def test_without_pinocchio_info_prints_tree_and_urdf_masses(capsys, monkeypatch)
     assert code == 0
     assert "revolute 'elbow' from 'upper_arm'" in out
     assert "mass    3.5 kg (sum of <mass> values)" in out
-    assert "com, dof: need Pinocchio (pip install 'urdflint[dynamics]')" in out
+    assert f"com, dof: need Pinocchio ({install_command('dynamics')})" in out
+    assert install_command("dynamics") == f"pip install -e '{ROOT}[dynamics]'"  # a checkout
     doc = Document(str(ARM), ARM.read_bytes())
     assert info.summary(doc) is None

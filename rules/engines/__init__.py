@@ -7,4 +7,5 @@ from urdflint.rules.engines import (  # noqa: F401
     e004_engine_replaced_inertia,
     e005_engine_crashed,
     e006_engine_warning,
+    e007_engine_unavailable,
 )

@@ -9,7 +9,6 @@ from urdflint.model.providers import provided
 
 LABELS = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "drake": "Drake", "pinocchio": "Pinocchio",
           "sdformat": "sdformat (Gazebo)"}  # fmt: skip
-EXTRA = "pip install 'urdflint[engines]'"
 # engines that are not Python packages: how to install them instead of EXTRA
 INSTALL = {"sdformat": "install libsdformat-dev (sdformat12, found by pkg-config) and g++"}
 
@@ -27,4 +26,6 @@ def label(engine: str) -> str:
 
 def install(engine: str) -> str:
     """How to install ``engine``."""
-    return INSTALL.get(engine, EXTRA)
+    from urdflint.model.optional import install_command
+
+    return INSTALL.get(engine) or install_command("engines")

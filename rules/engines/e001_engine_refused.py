@@ -26,10 +26,8 @@ the reason names (by line, as MuJoCo and Drake give it, or by name), else on `<r
   a model left without links (a root link without mass: "A model must have at least one
   link.") and whatever urdfdom refuses (two roots, an undefined link).
 
-An engine that is not installed is noted once per file, as an **info** finding
-(nothing was confirmed with it; for sdformat also when its probe did not compile, with
-the compiler's reason). Without `--confirm`, or a `confirm` key in the configuration,
-E001 does nothing.
+An engine that is not installed is not a refusal: E007 `engine-unavailable` notes it.
+Without `--confirm`, or a `confirm` key in the configuration, E001 does nothing.
 
 ## Why is this bad?
 The static rules describe the URDF specification and what urdfdom does; each engine has
@@ -38,16 +36,15 @@ unusable there, whatever the linter says.
 
 ## How to fix
 Fix the element the engine names. Most refusals also have a static finding (S, J, I
-rules) on the same element that explains the cause. Install a missing engine with
-`pip install 'urdflint[engines]'`; sdformat with `apt-get install libsdformat-dev` (the
-probe is compiled with `g++` on first use, into `~/.cache/urdflint/`).
+rules) on the same element that explains the cause. An engine that is not
+installed is E007's note.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
-from urdflint.rules.engines.common import install, label, outcomes
+from urdflint.rules.engines.common import label, outcomes
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
@@ -62,16 +59,7 @@ from urdflint.model.finding import Severity
 )
 def check(doc: Document) -> Iterator[Hit]:
     for outcome in outcomes(doc):
-        if not outcome.installed:
-            why = f": {outcome.reason}, so it" if getattr(outcome, "reason", None) else ""
-            yield Hit(
-                None,
-                f"{label(outcome.engine)}{why} is not installed: the model was not loaded in it",
-                fix=install(outcome.engine),
-                severity=Severity.INFO,
-                engine=outcome.engine,
-            )
-        elif outcome.refusal is not None:
+        if outcome.installed and outcome.refusal is not None:
             reason = outcome.refusal
             yield Hit(
                 reason.element,

@@ -28,7 +28,7 @@ def _jobs(value: str) -> int:
 
 
 HELP = {
-    "check": "lint files and folders (folders: every *.urdf below)",
+    "check": "lint files and folders (folders: every *.urdf and entry *.xacro below)",
     "fix": "apply the automatic fixes, then report what is left (check --fix)",
 }
 
@@ -39,7 +39,12 @@ def add_parser(sub: Any) -> None:
 
 
 def _options(check: argparse.ArgumentParser) -> None:
-    check.add_argument("paths", nargs="+", metavar="PATH", help="file, folder, or - for stdin")
+    check.add_argument(
+        "paths",
+        nargs="+",
+        metavar="PATH",
+        help="file, folder (every *.urdf and entry *.xacro below), or - for stdin",
+    )
     check.add_argument(
         "--format",
         default="auto",
@@ -83,7 +88,8 @@ def _options(check: argparse.ArgumentParser) -> None:
         metavar="TARGETS",
         help="consumers the model is meant for: "
         + ", ".join((*targets.TARGETS, targets.ALL))
-        + " (comma-separated or repeated; default gazebo-classic; all: every one)",
+        + " (comma-separated or repeated; default: inferred from the model and its package,"
+        " else gz-sim and ros; all: every one)",
     )
     package.add_options(check)
     check.add_argument(

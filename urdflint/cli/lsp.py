@@ -23,7 +23,9 @@ def run(args: argparse.Namespace) -> int:
     try:
         import pygls  # noqa: F401
     except ImportError:
-        raise UsageError("urdflint lsp needs pygls: pip install 'urdflint[lsp]'") from None
+        from urdflint.model.optional import install_command
+
+        raise UsageError(f"urdflint lsp needs pygls: {install_command('lsp')}") from None
     from urdflint.lsp.server import main
 
     return main(open_cache(args, settings_here()))

@@ -42,7 +42,9 @@ def run(args: argparse.Namespace) -> int:
     try:
         import uvicorn
     except ImportError:
-        raise UsageError("serve needs the server extra: pip install 'urdflint[server]'") from None
+        from urdflint.model.optional import install_command
+
+        raise UsageError(f"serve needs the server extra: {install_command('server')}") from None
     if args.workers < 1 or not 0 <= args.port < 65536:
         raise UsageError("--workers must be at least 1 and --port between 0 and 65535")
     from urdflint.server.limits import LimitError, Limits

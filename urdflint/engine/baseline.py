@@ -22,8 +22,9 @@ from urdflint.model.finding import Finding
 
 VERSION = 1
 # Run-level notes, never recorded: they describe the installation, not the model
-# (U001 a crash, U004 a missing extra, U005 the baseline itself).
-UNRECORDED = frozenset({"U001", "U004", "U005"})
+# (E007 an engine not installed, U001 a crash, U004 a missing extra, U005 the baseline
+# itself).
+UNRECORDED = frozenset({"E007", "U001", "U004", "U005"})
 FIX = "Rewrite the baseline with --write-baseline FILE so it only keeps what still occurs."
 
 

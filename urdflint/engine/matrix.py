@@ -27,7 +27,7 @@ CONFIRMS: dict[str, Outcome] = {
     "E004": Outcome.CHANGES,
     "E005": Outcome.CRASHES,
 }
-NOT_INSTALLED = "not-installed"  # the variant of E001's "not installed" note
+NOT_INSTALLED = "not-installed"  # E007: the engine is not installed here
 
 
 def every_target(
@@ -109,8 +109,7 @@ def outcome(effect: Effect) -> Outcome:
 def confirm(findings: list[Finding], engine: str) -> dict[str, Any]:
     """What ``engine`` did: the worst of its E findings (none: it loaded the model)."""
     mine = [f for f in findings if f.engine == engine]
-    if any(f.code == "E001" and f.message.endswith("not installed: the model was not loaded in it")
-           for f in mine):  # fmt: skip
+    if any(f.code == "E007" for f in mine):  # the engine is not installed here
         return {"engine": engine, "outcome": NOT_INSTALLED, "findings": []}
     worst = max((CONFIRMS[f.code] for f in mine if f.code in CONFIRMS), default=Outcome.LOADS)
     shown = [

@@ -13,13 +13,13 @@ import json
 from typing import TYPE_CHECKING, Any
 
 from urdflint.model.inertia import read_inertial
+from urdflint.model.optional import install_command
 from urdflint.model.values import fmt
 
 if TYPE_CHECKING:
     from urdflint.engine.physics import Physics
     from urdflint.model.document import Document
 
-INSTALL = "pip install 'urdflint[dynamics]'"
 
 
 def summary(doc: Document) -> dict[str, Any] | None:
@@ -179,7 +179,7 @@ def text(data: dict[str, Any]) -> str:
             lines.append(f"error: {problem}")
     elif data["pinocchio_missing"]:
         lines.append(f"mass    {urdf_sum} (sum of <mass> values)")
-        lines.append(f"com, dof: need Pinocchio ({INSTALL})")
+        lines.append(f"com, dof: need Pinocchio ({install_command('dynamics')})")
     else:
         lines.append(f"mass    {urdf_sum} (sum of <mass> values)")
         lines.append(f"model not built: {data['problem']}")

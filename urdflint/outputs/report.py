@@ -22,7 +22,7 @@ def model_summary(result: Any) -> Any:
 
 def skipped_note(path: str, skipped: dict[str, tuple[str, ...]], expects: bool) -> Finding:
     """One note for the run; an error when mass/COM expectations could not be checked."""
-    from urdflint.model.optional import EXTRAS
+    from urdflint.model.optional import EXTRAS, install_command
 
     rule = registry.RULES["U004"]
     gate = expects and bool({"P003", "P004"} & set(skipped))
@@ -30,7 +30,7 @@ def skipped_note(path: str, skipped: dict[str, tuple[str, ...]], expects: bool) 
     extras = sorted({EXTRAS.get(m, m) for m in modules})
     message = (
         f"{len(skipped)} rule(s) skipped ({', '.join(sorted(skipped))}): "
-        f"{', '.join(modules)} not installed; install urdflint[{','.join(extras)}]"
+        f"{', '.join(modules)} not installed; install the extra {','.join(extras)}"
     )
     if gate:
         message += "; the mass and COM expectations were NOT checked"
@@ -43,5 +43,5 @@ def skipped_note(path: str, skipped: dict[str, tuple[str, ...]], expects: bool) 
         Severity.ERROR if gate else rule.severity,
         message,
         "/robot",
-        f"pip install 'urdflint[{','.join(extras)}]'",
+        install_command(",".join(extras)),
     )

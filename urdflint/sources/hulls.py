@@ -40,7 +40,9 @@ def hull_file(doc: Document, shape: Shape) -> HullFile | str:
 
     uri = (shape.filename or "").strip()
     if not meshes_readable():
-        return "reading meshes needs trimesh (pip install 'urdflint[meshes]')"
+        from urdflint.model.optional import install_command
+
+        return f"reading meshes needs trimesh ({install_command('model')})"
     found = resolved(doc, uri)
     if not found.found or found.path is None:
         return f"the mesh {uri!r} was not found"

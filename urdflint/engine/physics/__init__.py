@@ -142,7 +142,9 @@ def build(doc: Document) -> Physics:
         import pinocchio as pin
     except ImportError:
         base.missing = True
-        base.reason = "Pinocchio is not installed (pip install 'urdflint[dynamics]')"
+        from urdflint.model.optional import install_command
+
+        base.reason = f"Pinocchio is not installed ({install_command('dynamics')})"
         return base
     with captured_output() as output:
         try:

@@ -97,8 +97,8 @@ class Expansion(Problems):
         except ImportError:
             return XmlProblem(
                 "X010",
-                "cannot expand xacro files: the xacro package is not installed "
-                "(pip install 'urdflint[xacro]')",
+                "cannot expand xacro files: the xacro package, a dependency of urdflint, "
+                "is not installed (pip install xacro)",
             )
         self.x = xacro
         sink = io.StringIO()
