@@ -37,6 +37,8 @@ from urdflint.engines.probe import MARK, MUJOCO_LOG
 from urdflint.model import targets
 from urdflint.model.finding import Finding
 
+pytestmark = pytest.mark.slow  # the real engines
+
 ENGINES = runner.ENGINES
 CONTROL = "none"
 TARGETS = tuple(targets.TARGETS)  # --target all

@@ -107,6 +107,7 @@ def _entries() -> list[tuple[str, dict[str, str]]]:
     return [(item["entry"], item["args"]) for item in data]
 
 
+@pytest.mark.slow  # real packages end to end
 @pytest.mark.parametrize(("entry", "args"), _entries(), ids=lambda v: str(v)[:40])
 def test_real_packages_same_findings(
     entry: str, args: dict[str, str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
@@ -134,6 +135,7 @@ def _package_paths(model: Path) -> dict[str, Path]:
     return {name: model.parent / folder for name, folder in mapping.items()}
 
 
+@pytest.mark.slow  # real robots with their meshes
 @pytest.mark.skipif(not _corpus_with_meshes(), reason="../shared/corpus is not present")
 @pytest.mark.parametrize("model", _corpus_with_meshes(), ids=lambda p: p.parent.name)
 def test_corpus_meshes_same_findings_from_stored_facts(model: Path, tmp_path: Path) -> None:
@@ -477,6 +479,7 @@ def test_the_size_stays_under_the_limit_least_recently_used_first(tmp_path: Path
     assert store.get("x", f"{1:040x}") is None
 
 
+@pytest.mark.slow  # two processes race
 def test_two_processes_writing_the_same_entries_at_once(tmp_path: Path) -> None:
     robot = copy_tree(MESH_RULE, tmp_path / "robot") / "bad.urdf"
     env = {**os.environ, "URDFLINT_CACHE_DIR": str(tmp_path / "cache")}
@@ -610,6 +613,7 @@ def test_deps_record_reads_listings_and_explicit_inputs(tmp_path: Path) -> None:
     assert not deps.unchanged(recorded)
 
 
+@pytest.mark.slow  # a process pool
 def test_jobs_replay_in_the_parent_and_pool_only_the_rest(tmp_path: Path) -> None:
     """A warm --jobs run gives the --jobs 1 output byte for byte; after an edit, only the
     edited file is linted again (the others are replayed)."""

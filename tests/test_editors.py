@@ -16,6 +16,8 @@ import pytest
 
 from tests.conftest import FIXTURES
 
+pytestmark = pytest.mark.slow  # real editors (Neovim, Emacs)
+
 pytest.importorskip("pygls")
 NVIM = shutil.which("nvim")
 EMACS = shutil.which("emacs")

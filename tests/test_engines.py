@@ -20,6 +20,8 @@ from tests.helpers import lint_file
 from urdflint.engine import config, linter
 from urdflint.engines import runner
 
+pytestmark = pytest.mark.slow  # the real engines
+
 MODELS = FIXTURES / "engines"
 ENGINES = runner.ENGINES
 JOINT = "/robot/joint[@name='wrist_mount']"

@@ -20,6 +20,8 @@ from tests.helpers import lint_file
 from urdflint.engine import config, linter
 from urdflint.engines import runner, sdformat
 
+pytestmark = pytest.mark.slow  # sdformat, compiled on first use
+
 MODELS = FIXTURES / "engines"
 INERTIA = '<inertia ixx="{i}" ixy="0" ixz="0" iyy="{i}" iyz="0" izz="{i}"/>'
 

@@ -15,6 +15,8 @@ from tests.conftest import CORPUS, needs_corpus
 from urdflint.cli import main
 from urdflint.engine import config, linter
 
+pytestmark = pytest.mark.slow  # every corpus robot fixed end to end
+
 ROBOTS = sorted(p.parent for p in CORPUS.glob("*/model.urdf")) if CORPUS.is_dir() else []
 
 

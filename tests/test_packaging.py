@@ -26,6 +26,7 @@ def wheel(tmp_path_factory: pytest.TempPathFactory) -> zipfile.ZipFile:
     return zipfile.ZipFile(next(Path(out).glob("urdflint-*.whl")))
 
 
+@pytest.mark.slow  # builds the wheel
 def test_wheel_layout(wheel: zipfile.ZipFile) -> None:
     names = wheel.namelist()
     tops = {n.split("/")[0] for n in names if not n.startswith("urdflint-")}

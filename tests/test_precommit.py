@@ -38,6 +38,7 @@ def _git(cwd: Path, *args: str) -> None:
     subprocess.run(["git", *args], cwd=cwd, check=True, capture_output=True)
 
 
+@pytest.mark.slow  # pre-commit builds its own environment
 def test_try_repo_fails_on_broken_and_passes_on_clean(tmp_path: Path) -> None:
     repo = tmp_path / "robot"
     repo.mkdir()

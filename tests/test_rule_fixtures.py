@@ -40,7 +40,8 @@ def _cases(prefix: str) -> list[tuple[str, object]]:
     cases = []
     for rule in RULES:
         for path in fixtures(rule.code, prefix):
-            cases.append(pytest.param(rule, path, id=f"{rule.code}/{path.name}"))
+            slow = [pytest.mark.slow] if fixture_settings(path).confirm else []  # the engines
+            cases.append(pytest.param(rule, path, id=f"{rule.code}/{path.name}", marks=slow))
     return cases
 
 

@@ -22,6 +22,8 @@ import pytest
 
 from tests.conftest import ROOT
 
+pytestmark = pytest.mark.slow  # npm and vsce package the extension
+
 EXTENSION = ROOT / "editors" / "vscode"
 NODE = shutil.which("node")
 NPM = shutil.which("npm")

@@ -155,6 +155,7 @@ def assert_same(patched: Document, result: linter.Result, settings: config.Setti
     assert mine == [f.to_dict() for f in result.findings]
 
 
+@pytest.mark.slow  # real packages end to end
 @pytest.mark.parametrize("entry", sorted(ENTRIES))
 def test_value_edits_in_real_packages_give_what_a_full_expansion_gives(entry: str) -> None:
     edits = edits_of(entry)

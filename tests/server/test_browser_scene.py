@@ -48,10 +48,13 @@ from tests.server.browsing import (  # noqa: E402
     rules,
 )
 
-pytestmark = pytest.mark.skipif(
-    CHROMIUM is None or CHROMEDRIVER is None,
-    reason="needs chromium and chromedriver (Debian: apt-get install chromium chromium-driver)",
-)
+pytestmark = [
+    pytest.mark.slow,  # a real browser
+    pytest.mark.skipif(
+        CHROMIUM is None or CHROMEDRIVER is None,
+        reason="needs chromium and chromedriver (Debian: apt-get install chromium chromium-driver)",
+    ),
+]
 
 VIEW = FIXTURES / "models" / "inertia_view.urdf"
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"

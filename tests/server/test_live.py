@@ -313,6 +313,7 @@ def _lint_workers(server_pid: int) -> list[int]:
     return found
 
 
+@pytest.mark.slow  # a load loop against the real server
 @needs_corpus
 @pytest.mark.skipif(not Path("/proc").is_dir(), reason="finds the lint workers in /proc")
 def test_a_bounded_load_loop_saturates_readiness_and_survives_a_killed_worker(

@@ -173,6 +173,7 @@ def test_bad_engine_names_are_422(confirming: TestClient) -> None:
     assert r.status_code == 422 and "unknown engine 'gazebo'" in r.json()["detail"]
 
 
+@pytest.mark.slow  # the real engines
 @pytest.mark.skipif(not HAS_PINOCCHIO, reason="needs pinocchio")
 def test_confirm_runs_the_engine_in_the_worker(confirming: TestClient, folders: Path) -> None:
     r = check(confirming, matrix="true", confirm="pinocchio")
@@ -192,6 +193,7 @@ def test_confirm_runs_the_engine_in_the_worker(confirming: TestClient, folders: 
     assert list(folders.iterdir()) == []
 
 
+@pytest.mark.slow  # the real engines
 @pytest.mark.skipif(not HAS_MUJOCO, reason="needs mujoco")
 def test_confirmed_engines_never_open_files_outside_the_upload(
     confirming: TestClient, folders: Path

@@ -70,6 +70,7 @@ def test_server_started_from_a_shadowing_folder_lints(tmp_path: Path) -> None:
 WAIT = 120.0  # s: a generous bound for the server to give up on its own (about 5 s idle)
 
 
+@pytest.mark.slow  # waits for the server to give up
 @needs_script
 def test_server_exits_when_no_worker_can_start(tmp_path: Path) -> None:
     site = tmp_path / "site"
