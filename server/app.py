@@ -18,7 +18,9 @@ Endpoints (OpenAPI at ``/openapi.json``, shown by ``/docs``, which works offline
 ``GET /v1/capabilities`` targets, formats, whether ``confirm`` is allowed and which
                         engines are installed, the limits (touches no worker)
 ``GET /v1/rules``       the rule catalogue (as ``urdflint rules --format json``)
-``GET /v1/rules/{code}`` one rule, with its page as Markdown (as ``urdflint explain``)
+``GET /v1/rules/{code}`` one rule, with its full page as Markdown (``markdown``, as
+                        ``urdflint explain --long``) and its short page
+                        (``short_markdown``, as ``urdflint explain``)
 ``GET /healthz``        liveness: 200 while the process serves requests, touching nothing
                         else (not even the workers: a restart would not fix a busy server)
 ``GET /readyz``         readiness: a worker builds a tiny model with Pinocchio and loads a

@@ -152,7 +152,10 @@ async def rules() -> dict[str, Any]:
 
 @router.get("/v1/rules/{code}", tags=["rules"], responses={404: {"description": "no such rule"}})
 async def rule(code: str) -> JSONResponse:
-    """One rule (by code or name) and its documentation page as Markdown."""
+    """One rule (by code or name) and its documentation pages as Markdown: ``markdown`` the
+    full page (``urdflint explain CODE --long``: every section, what each target does, every
+    example; the web page shows it), ``short_markdown`` the short one (``urdflint explain
+    CODE``)."""
     found = registry.lookup(code)
     if found is None:
         return error(404, f"unknown rule {code!r}")
@@ -162,6 +165,7 @@ async def rule(code: str) -> JSONResponse:
         h: found.section(h) for h in ("What it does", "Why is this bad?", "How to fix")
     }
     data["markdown"] = docs.page(found)
+    data["short_markdown"] = docs.short_page(found)
     return JSONResponse(data)
 
 

@@ -359,10 +359,13 @@ def test_rules_endpoints_match_the_cli(client: TestClient) -> None:
     assert listed == json.loads(cli.stdout)
     one = client.get("/v1/rules/triangle-inequality").json()
     assert one["code"] == "I005"
-    explained = subprocess.run(
-        [sys.executable, "-m", "urdflint", "explain", "I005"], capture_output=True, text=True
-    ).stdout
-    assert one["markdown"] == explained
+    for key, args in (("markdown", ["--long"]), ("short_markdown", [])):
+        explained = subprocess.run(
+            [sys.executable, "-m", "urdflint", "explain", "I005", *args],
+            capture_output=True,
+            text=True,
+        ).stdout
+        assert one[key] == explained
     assert one["sections"]["How to fix"]
     assert client.get("/v1/rules/Z999").status_code == 404
 

@@ -14,8 +14,15 @@ def add_parsers(sub: Any) -> None:
     rules = sub.add_parser("rules", help="list the rules")
     rules.add_argument("--format", choices=("text", "json"), default="text")
 
-    explain = sub.add_parser("explain", help="show a rule's page: what, why, how to fix, examples")
+    explain = sub.add_parser(
+        "explain", help="show a rule's page: what, why, how to fix, a bad and a good example"
+    )
     explain.add_argument("rule", metavar="CODE|NAME")
+    explain.add_argument(
+        "--long",
+        action="store_true",
+        help="the full page: every section in full, what each target does, every example",
+    )
 
 
 def run_rules(args: argparse.Namespace) -> int:
@@ -48,5 +55,5 @@ def run_explain(args: argparse.Namespace) -> int:
     found = registry.lookup(args.rule)
     if found is None:
         raise UsageError(f"unknown rule {args.rule!r} (see 'urdflint rules')")
-    sys.stdout.write(docs.page(found))
+    sys.stdout.write(docs.page(found) if args.long else docs.short_page(found))
     return EXIT_OK
