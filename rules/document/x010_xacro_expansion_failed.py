@@ -9,6 +9,15 @@ message is xacro's, naming the file and line where the problem is when it can
 be found; the finding's line is in the file you checked (for an error inside an
 included file, the line of the `<xacro:include>` that leads to it).
 
+When an argument is the cause, the message names it. If an include, `$(find)`,
+`$(arg)` or `${}` fails because an argument is empty or has no value, the message
+gives the entry file being expanded and where the argument's default is declared
+(`file:line`). It also lists the macro parameters, properties and argument defaults
+the value passed through, and the `--xacro-arg NAME:=VALUE` to pass (with the values
+that name an existing file when the include's path is built from the argument). If a
+file or package is missing inside an `<xacro:if>` or `<xacro:unless>` that depends
+on an argument, the message names that argument and the value that skips the block.
+
 ## Why is this bad?
 `xacro` (and so `ros2 launch`, `robot_state_publisher`, Gazebo's spawn scripts)
 stops at the same error: no URDF is produced and nothing downstream can load the

@@ -13,7 +13,8 @@ to plain xacro:
   root; in that confined mode the environment is hidden from ``$(env)``/``$(optenv)``
   and the expression evaluator refuses the known ways out of its sandbox;
 - an expansion error (undefined property, missing include, bad XML in an include,
-  runaway recursion...) becomes one X010 finding instead of a traceback; a file that
+  runaway recursion...) becomes one X010 finding instead of a traceback, naming the xacro
+  argument behind it when one is empty or missing (:mod:`.arguments`); a file that
   only fails because it is a fragment of another file (it uses names its includer
   defines) is a library (X011), and so is a file with no ``<link>`` after expansion;
 - ``Document.origin`` maps each element of the expanded document back to the line

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 from urdflint.cache import deps
 from urdflint.model.document import MAX_BYTES, XmlProblem
 from urdflint.sources import install_layout
+from urdflint.sources.xacro.arguments import Site
 from urdflint.sources.xacro.guards import (
     ConfinedGlob,
     confined_eval,
@@ -59,6 +60,7 @@ class Expansion(Problems):
         self.tracker = Tracker()
         self.dom: Any = None  # the expanded DOM, marked for the source map
         self.last_yaml: str | None = None
+        self.include_site: Site | None = None  # the include being processed, until parsed
         self.x: Any = None
 
     # -- paths -----------------------------------------------------------------------
@@ -169,6 +171,7 @@ class Expansion(Problems):
             "handle_macro_call",
             self.tracker.calling(counting(x, x.handle_macro_call, self.macro_calls)),
         )
+        put(x, "process_include", self._including(x.process_include))
         put(minidom, "_clone_node", self.tracker.cloning(minidom._clone_node))  # type: ignore[attr-defined]
         put(sa, "_eval_find", self._find)
         put(sa, "_eval_env", self._env)
@@ -226,6 +229,10 @@ class Expansion(Problems):
             deps.note_absent(full)
             full = install_layout.source_file(full) or full
         is_main = full == self.main
+        site = self.include_site
+        if site is not None:
+            site.resolved = os.path.abspath(os.path.join(x.root_dir, filename))
+            site.read = full
         try:
             data = self._read(full)
         except x.XacroException:
@@ -256,7 +263,20 @@ class Expansion(Problems):
         if self.source(full) is None:
             chain = tuple(os.path.abspath(f) for f in (x.filestack or []) if f)
             self.sources.append(Source(full, shown, text, chain or (full,)))
+        self.include_site = None  # what goes wrong from here is inside the included file
         return dom
+
+    def _including(self, original: Any) -> Any:
+        """xacro's ``process_include``, keeping the include in hand until its file is parsed
+        (an error meanwhile is the include's own: its filename or its file)."""
+
+        def process_include(elt: Any, macros: Any, symbols: Any, func: Any) -> Any:
+            self.include_site = Site(elt, symbols)
+            result = original(elt, macros, symbols, func)
+            self.include_site = None  # (an optional include that was not found)
+            return result
+
+        return process_include
 
     def _open(self, file: Any, mode: str = "r", *args: Any, **kwargs: Any) -> Any:
         """``open`` for ``xacro.load_yaml``: confined and size-limited like includes."""

@@ -6,13 +6,11 @@ import os
 import re
 from collections.abc import Iterator
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from urdflint.model.document import XmlProblem
+from urdflint.sources.xacro.arguments import Arguments
 from urdflint.sources.xacro.guards import refusal_class
-
-if TYPE_CHECKING:
-    from urdflint.sources.xacro.literal import Source
 
 FRAGMENT_SCAN_FILES = 2000
 FRAGMENT_SUFFIXES = (".xacro", ".urdf", ".gazebo", ".trans", ".xml")
@@ -21,22 +19,10 @@ CLASS_RE = re.compile(r"<class '[\w.]+'>:\s*")
 YAML_MARK_RE = re.compile(r"\s*in \"<[^>]*>\", line \d+, column \d+")
 
 
-class Problems:
+class Problems(Arguments):
     """The error side of :class:`~urdflint.sources.xacro.expansion.Expansion`."""
 
-    x: Any
-    main: str
-    sources: list[Source]
     last_yaml: str | None
-
-    def shown_path(self, full: str) -> str:
-        raise NotImplementedError
-
-    def inside(self, path: str) -> bool:
-        raise NotImplementedError
-
-    def source(self, path: str | None) -> Source | None:
-        raise NotImplementedError
 
     def _problem(self, exc: BaseException) -> XmlProblem:
         x = self.x
@@ -52,27 +38,26 @@ class Problems:
             history = macrostack[-1].history
             if history and history[-1] and history[-1][-1]:
                 here = os.path.abspath(history[-1][-1])
+        needle = None
         if refused is not None and refused.path is not None:
             code, message = refused.code, refused.message
             path, line, column = refused.path, refused.line, refused.column
+            explain = False
         else:
             code = refused.code if refused is not None else "X010"
             message = refused.message if refused is not None else _describe(exc)
-            missing = _missing_arg(chain)
-            if missing is not None and not self._includer():
-                message = (
-                    f"xacro argument '{missing}' has no value: it has no default and was not"
-                    f" given; pass it with --xacro-arg {missing}:=VALUE or set it under"
-                    " [tool.urdflint.xacro-args] (for this file only:"
-                    " [tool.urdflint.per-file-xacro-args])"
-                )
-            if macro and refused is None and f"'{macro}'" not in message:
-                message += f" in macro '{macro}'"
             needle = (refused.needle if refused is not None else None) or _needle(chain)
             if needle is None and macro:
                 needle = f"<xacro:{macro}"
-            path, line, column = self._locate(needle, here)
+            # an include that failed is where it is written; otherwise, where the needle is
+            path, line, column = self._site_at() or self._locate(needle, here)
+            missing = _missing_arg(chain)
+            if missing is not None and not self._includer():
+                message = self._missing_message(missing, (path, line, column))
+            if macro and refused is None and f"'{macro}'" not in message:
+                message += f" in macro '{macro}'"
             message += self._yaml_where(chain)
+            explain = code == "X010" and missing is None
         if code == "X010" and self._is_fragment(chain):
             includer = self._includer()
             if includer is not None:
@@ -83,7 +68,21 @@ class Problems:
                     f" {includer}, which includes it and is where it is checked",
                     *at,
                 )
-        message = _sentence(message)
+        if explain:  # the arguments behind it
+            found = _not_found(chain, refused)
+            message = self._explained(message, found, needle, (path, line, column))
+        return self._placed(code, _sentence(message), path, line, column, filestack)
+
+    def _placed(
+        self,
+        code: str,
+        message: str,
+        path: str | None,
+        line: int | None,
+        column: int | None,
+        filestack: list[str],
+    ) -> XmlProblem:
+        """The finding at ``path:line:column``, or at the include that leads there."""
         if path is None or path == self.main:
             return XmlProblem(code, message, line or 1, column or 1)
         if line:  # located in an included file: the finding goes there
@@ -260,3 +259,13 @@ def _missing_arg(chain: list[BaseException]) -> str | None:
         if isinstance(exc, ArgException) and exc.args:
             return str(exc.args[0])
     return None
+
+
+def _not_found(chain: list[BaseException], refused: Any) -> bool:
+    """The failure is a file, package or environment variable that is not there."""
+    from xacro.substitution_args import SubstitutionException
+
+    if refused is not None:
+        return isinstance(refused.exc, OSError)
+    # (urdflint's $(find) and $(env) give the exceptions they raise a needle)
+    return any(isinstance(e, SubstitutionException) and hasattr(e, "needle") for e in chain)
