@@ -54,6 +54,7 @@ class CheckJob:
     fix: bool = False  # POST /v1/fix: fix the upload first, answer the fixed text and diff
     unsafe_fixes: bool = False  # ... with the fixes that change the physics too
     scene: bool = False  # add the robot as a 3D scene (``scene`` option)
+    docs_url: str | None = None  # SARIF helpUri: this service's rule pages, /rules/{code}
 
 
 @dataclass(frozen=True)
@@ -197,7 +198,12 @@ def _answer(
     if result.targets and doc is not None and doc.root is not None:  # as the CLI's
         chosen_targets = {job.name: scrub.value(result.targets.to_dict())}
     run_info = formatters.RunInfo(
-        __version__, (job.name,), models, matrix=tuple(rows), targets=chosen_targets
+        __version__,
+        (job.name,),
+        models,
+        matrix=tuple(rows),
+        targets=chosen_targets,
+        docs_url=job.docs_url,
     )
     if job.fmt != "json":
         return _rendered(job.fmt, findings, run_info)

@@ -250,6 +250,7 @@ async def _lint(
             fix=options.fix,
             unsafe_fixes=options.unsafe_fixes,
             scene=options.scene,
+            docs_url=f"{str(request.base_url).rstrip('/')}/rules/{{code}}",
         )
         try:
             answer = await pool.run(job)

@@ -73,9 +73,14 @@ def inputs_env(action: dict[str, Any], name: str, values: dict[str, str]) -> dic
             value = value.replace("${{ inputs." + input_name + " }}", given)
         value = value.replace("${{ github.action_path }}", str(ROOT))
         value = value.replace("${{ runner.temp }}", str(RUNNER_TEMP))
+        value = value.replace("${{ github.action_repository }}", ACTION_REPOSITORY)
+        value = value.replace("${{ github.action_ref }}", ACTION_REF)
         assert "${{" not in value, key
         env[key] = value
     return env
+
+
+ACTION_REPOSITORY, ACTION_REF = "someone/urdflint", "v1"  # as `uses: someone/urdflint@v1`
 
 
 def run_step(
@@ -188,3 +193,14 @@ def test_install_step_builds_the_pip_requirement(
     args = log.read_text().splitlines()
     assert args[:3] == ["-m", "pip", "install"] and args[-1] == spec
     assert done.stdout.startswith("urdflint ")  # the --version check after installing
+
+
+def test_sarif_rules_link_to_their_source_in_the_action_repository(action, tmp_path) -> None:
+    out = tmp_path / "u.sarif"
+    values = {"paths": "fixtures/models/broken_arm.urdf", "sarif-file": str(out)}
+    done = run_step(action, "Run urdflint", values)
+    assert done.returncode == 1, done.stderr
+    rules = json.loads(out.read_text())["runs"][0]["tool"]["driver"]["rules"]
+    base = f"https://github.com/{ACTION_REPOSITORY}/blob/{ACTION_REF}/rules/"
+    assert rules and all(r["helpUri"].startswith(base) for r in rules)
+    assert all((ROOT / r["helpUri"].removeprefix(base[: -len("rules/")])).is_file() for r in rules)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -233,3 +234,46 @@ def test_sarif_of_the_whole_corpus_validates() -> None:
     assert uris <= {sarif.artifact_uri(str(m), cwd=ROOT) for m in models}
     for result in run["results"]:
         assert len(result["partialFingerprints"][sarif.FINGERPRINT_KEY]) == 32
+
+
+# -- helpUri: each rule's page ---------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("template", "expected"),
+    [
+        (None, None),
+        ("https://docs.example.org/rules/", "https://docs.example.org/rules/I005"),
+        ("https://docs.example.org/rules/{code}.html", "https://docs.example.org/rules/I005.html"),
+        ("https://x.org/{name}", "https://x.org/triangle-inequality"),
+        (
+            "https://github.com/o/urdflint/blob/v1/{path}",
+            "https://github.com/o/urdflint/blob/v1/rules/inertial/i005_triangle_inequality.py",
+        ),
+    ],
+)
+def test_help_uri_follows_the_docs_url_template(template: str | None, expected: str | None) -> None:
+    finding = _finding("I005", Severity.ERROR, "bad")
+    log = sarif.document([finding], RunInfo(__version__, docs_url=template))
+    (rule,) = log["runs"][0]["tool"]["driver"]["rules"]
+    assert rule.get("helpUri") == expected
+    _validate(log)
+
+
+def test_every_rule_module_path_exists_for_the_path_template() -> None:
+    for rule in registry.load_rules().values():
+        path = sarif.help_uri("{path}", rule)
+        assert path is not None and (ROOT / path).is_file(), path
+
+
+def test_cli_help_uri_from_the_option_and_the_environment(tmp_path: Path) -> None:
+    given = _cli_sarif("--docs-url", "https://d.example/{code}", str(BROKEN.relative_to(ROOT)))
+    rules = given["runs"][0]["tool"]["driver"]["rules"]
+    assert rules and all(r["helpUri"] == f"https://d.example/{r['id']}" for r in rules)
+    proc = subprocess.run(
+        [sys.executable, "-m", "urdflint", "check", "--format", "sarif", str(BROKEN)],
+        capture_output=True, text=True, cwd=ROOT, check=False,
+        env={**os.environ, "URDFLINT_DOCS_URL": "https://e.example/r/"},
+    )  # fmt: skip
+    rules = json.loads(proc.stdout)["runs"][0]["tool"]["driver"]["rules"]
+    assert all(r["helpUri"] == f"https://e.example/r/{r['id']}" for r in rules)

@@ -204,7 +204,12 @@ def test_other_formats(client: TestClient) -> None:
     else:
         assert r.status_code == 200, r.text
         assert r.headers["content-type"].startswith("application/sarif+json")
-        assert "runs" in json.loads(r.text)
+        rules = json.loads(r.text)["runs"][0]["tool"]["driver"]["rules"]
+        assert rules and all(  # each rule links to this service's page of it
+            rule["helpUri"] == f"http://testserver/rules/{rule['id']}" for rule in rules
+        )
+        page = client.get(rules[0]["helpUri"].removeprefix("http://testserver"))
+        assert page.status_code == 200 and page.headers["content-type"].startswith("text/html")
 
 
 # -- malformed requests -------------------------------------------------------------------

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from urdflint import __version__
-from urdflint.cli import fix, fragments, show_packages
+from urdflint.cli import fix, fragments, show, show_packages, watch
 from urdflint.cli.check_options import add_parser
 from urdflint.cli.common import (
     EXIT_ERROR,
@@ -50,6 +50,8 @@ class Run:
 
 
 def run(args: argparse.Namespace) -> int:
+    if getattr(args, "watch", False):
+        return watch.run(args, run)  # this run, again on each change
     try:
         finder = SettingsFinder(args)
     except config.ConfigError as exc:
@@ -64,6 +66,8 @@ def run(args: argparse.Namespace) -> int:
     robots, pieces = fragments.split(files)  # a *.urdf fragment nobody includes: one note
     if args.show_packages:
         show_packages.write(files, context, finder, sys.stderr)
+    if show.requested(args):  # --show-files, --show-settings, --add-noqa: no lint report
+        return show.run(args, files, errors, context, finder)
     accepted = _load_baseline(args)
     if args.emit_expanded and not (len(files) == 1 and files[0].lower().endswith(".xacro")):
         raise UsageError("--emit-expanded needs exactly one xacro file")
@@ -100,8 +104,9 @@ def run(args: argparse.Namespace) -> int:
         tuple(outcome.matrix),
         outcome.targets,
         outcome.baselined,
+        docs_url=args.docs_url or os.environ.get("URDFLINT_DOCS_URL") or None,
     )
-    _write_outputs([(fmt, args.output), *reports], findings, info)
+    _write_outputs([(fmt, args.output), *reports], findings, info, _display(args, info, files))
     return _exit_code(args, files, outcome, findings)
 
 
@@ -265,12 +270,34 @@ def _reports(args: argparse.Namespace) -> list[tuple[str, Path]]:
     return reports
 
 
+def _display(
+    args: argparse.Namespace, run: formatters.RunInfo, files: list[str]
+) -> formatters.RunInfo:
+    """The main output's display options (--output-format, --statistics, --quiet)."""
+    return replace(
+        run,
+        output_format=args.output_format,
+        statistics=args.statistics,
+        quiet=args.quiet,
+        unread=(args.stdin_filename,) if "-" in files else (),  # not the text on disk
+    )
+
+
 def _write_outputs(
-    outputs: Sequence[tuple[str, Path | None]], findings: list[Finding], run: formatters.RunInfo
+    outputs: Sequence[tuple[str, Path | None]],
+    findings: list[Finding],
+    run: formatters.RunInfo,
+    main: formatters.RunInfo | None = None,
 ) -> None:
-    """Render each (format, file) of the run; ``None`` = stdout."""
-    for name, path in outputs:
-        text = formatters.get(name)(findings, run if name == "json" else replace(run, models={}))
+    """Render each (format, file) of the run; ``None`` = stdout. The first, the main output,
+    with the display options of ``main``; the --report files carry everything. With
+    --statistics, the main output is the statistics table unless its format is json."""
+    for index, (name, path) in enumerate(outputs):
+        shown = main if index == 0 and main is not None else run
+        if shown.statistics and name != "json":
+            name = "text"
+        shown = shown if name == "json" else replace(shown, models={})
+        text = formatters.get(name)(findings, shown)
         if path is None:
             sys.stdout.write(text)
             sys.stdout.flush()

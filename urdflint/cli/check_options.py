@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from urdflint.cli import fix, package
+from urdflint.cli import fix, package, show
 from urdflint.cli.common import cache_options, gate_options, model_options
 from urdflint.engine import config, options
 from urdflint.model import targets
@@ -74,12 +74,16 @@ def _options(check: argparse.ArgumentParser) -> None:
         help="lowest severity that makes the exit code 1 (default: error)",
     )
     check.add_argument("--exit-zero", action="store_true", help="same as --fail-on never")
-    check.add_argument(
-        "--show-info",
-        action="store_true",
-        help="list info findings in the text output (default: one summary line; "
-        "--fail-on info and the machine formats always list them)",
-    )
+    _display_options(check)
+    _target_options(check)
+    _more_options(check)
+    cache_options(check)
+    fix.add_options(check)
+    _jobs_option(check)
+    _show_packages_option(check)
+
+
+def _target_options(check: argparse.ArgumentParser) -> None:
     check.add_argument(
         "--target",
         action="append",
@@ -99,11 +103,6 @@ def _options(check: argparse.ArgumentParser) -> None:
         "refused or crashes, and the findings that decide it (with --confirm: what the "
         "engines did)",
     )
-    _more_options(check)
-    cache_options(check)
-    fix.add_options(check)
-    _jobs_option(check)
-    _show_packages_option(check)
 
 
 def _jobs_option(check: argparse.ArgumentParser) -> None:
@@ -125,6 +124,7 @@ def _show_packages_option(check: argparse.ArgumentParser) -> None:
         help="list on stderr which folder each package name (package://, $(find)) resolves "
         "to for the files checked, and why; findings and exit code stay the same",
     )
+    show.add_options(check)  # --show-files, --show-settings, --add-noqa, --watch
 
 
 def _more_options(check: argparse.ArgumentParser) -> None:
@@ -187,3 +187,41 @@ def _more_options(check: argparse.ArgumentParser) -> None:
         "e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
     )
     gate_options(check)
+
+
+def _display_options(check: argparse.ArgumentParser) -> None:
+    """How the main output shows the findings; never which findings or the exit code."""
+    check.add_argument(
+        "--show-info",
+        action="store_true",
+        help="list info findings in the text output (default: one summary line; "
+        "--fail-on info and the machine formats always list them)",
+    )
+    check.add_argument(
+        "--output-format",
+        choices=("concise", "full"),
+        default="concise",
+        help="text format: concise (default) writes the findings of one rule at one source "
+        "line (a macro called N times) as one line, ×N; full writes each finding with its "
+        "macro calls, its effects and the source line it points to",
+    )
+    check.add_argument(
+        "--statistics",
+        action="store_true",
+        help="instead of the findings, one row per rule: count, code, name, severity, "
+        "fixable, most frequent first (a JSON list with --format json)",
+    )
+    check.add_argument(
+        "--quiet",
+        "-q",
+        action="store_true",
+        help="write only the findings: no info, fixable, targets or summary line",
+    )
+    check.add_argument(
+        "--docs-url",
+        metavar="URL",
+        default=None,
+        help="SARIF: each rule's helpUri, a URL with {code}, {name} or {path} (the rule's "
+        "source in this repository), or a base URL the code is appended to (default: "
+        "$URDFLINT_DOCS_URL)",
+    )

@@ -42,14 +42,16 @@ def render(files: Sequence[str], context: Any, finder: Any) -> str:
         answers: dict[tuple[str, str, tuple[str, ...]], list[str]] = {}
         for file, resolver in zip(checked or ["-"], resolvers, strict=True):
             found = resolver.lookup(name)
-            answers.setdefault(_answer(found, context), []).append(file)
+            answers.setdefault(answer(found, context), []).append(file)
         lines.extend(_lines(name, answers, len(resolvers), context))
     if not names:
         lines.append("  (no package.xml below the checked paths or their git root)")
     return "\n".join(lines) + "\n"
 
 
-def _answer(found: Lookup, context: Any) -> tuple[str, str, tuple[str, ...]]:
+def answer(found: Lookup, context: Any) -> tuple[str, str, tuple[str, ...]]:
+    """A lookup as listed: its folder (or ``not found``), how it was chosen (or where it was
+    looked for), and the packages as near (also ``check --show-settings``)."""
     folder = _shown(found.folder) if found.folder is not None else "not found"
     how = found.how or "; ".join(found.tried)
     if how == "package path":

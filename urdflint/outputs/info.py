@@ -21,7 +21,6 @@ if TYPE_CHECKING:
     from urdflint.model.document import Document
 
 
-
 def summary(doc: Document) -> dict[str, Any] | None:
     """``{name, root, links, joints, dof, mass, com}`` (counts for links and joints),
     or ``None`` when the model could not be built."""

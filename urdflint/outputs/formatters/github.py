@@ -31,5 +31,6 @@ def render(findings: Sequence[Finding], run: RunInfo) -> str:
             text = f"{f.code} {f.name}: {f.message}" + "".join(f"\n{c}" for c in f.trace)
             out.append(f"::{LEVEL[f.severity]} {props}::{_data(text)}")
         out.append("::endgroup::")
-    out.append(summary_line(findings, run))
-    return "\n".join(out) + "\n"
+    if not run.quiet:
+        out.append(summary_line(findings, run))
+    return "\n".join(out) + "\n" if out else ""

@@ -22,6 +22,14 @@ class RunInfo:
     matrix: tuple[dict[str, Any], ...] = ()  # --matrix: one row per (file, target)
     targets: dict[str, Any] = field(default_factory=dict)  # path -> the targets and how chosen
     baselined: int = 0  # findings hidden by --baseline (recorded by --write-baseline)
+    # display options of the main output; they never change the findings or the exit code
+    output_format: str = "concise"  # text: "concise" groups a rule's findings at one place
+    statistics: bool = False  # text, json: one row per rule instead of the findings
+    quiet: bool = False  # text, github: the findings only, no summary lines
+    # SARIF helpUri of each rule: a URL with {code}, {name} or {path} (the rule's source in
+    # the repository), or a base URL that the code is appended to; None: no helpUri
+    docs_url: str | None = None
+    unread: tuple[str, ...] = ()  # paths whose file is not what was checked (stdin's name)
 
     def summary(self, findings: Sequence[Finding]) -> dict[str, int]:
         counts = {"files": len(self.files), "error": 0, "warning": 0, "info": 0}

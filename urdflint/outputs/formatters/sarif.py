@@ -61,7 +61,20 @@ def _clip(text: str, limit: int = MAX_DESCRIPTION) -> str:
     return cut + "…"
 
 
-def _rule_descriptor(code: str, sample: Finding) -> dict[str, Any]:
+def help_uri(docs_url: str | None, rule: Any) -> str | None:
+    """The rule page's URL from the ``docs_url`` template (:class:`RunInfo`)."""
+    if not docs_url:
+        return None
+    module = rule.check.__module__.removeprefix("urdflint.")  # rules.inertial.i005_...
+    fields = {"code": rule.code, "name": rule.name, "path": module.replace(".", "/") + ".py"}
+    if not any("{" + key + "}" in docs_url for key in fields):
+        return docs_url.rstrip("/") + "/" + rule.code
+    for key, value in fields.items():
+        docs_url = docs_url.replace("{" + key + "}", quote(value))
+    return docs_url
+
+
+def _rule_descriptor(code: str, sample: Finding, docs_url: str | None = None) -> dict[str, Any]:
     from urdflint.engine import registry
 
     registry.load_rules()
@@ -85,8 +98,10 @@ def _rule_descriptor(code: str, sample: Finding) -> dict[str, Any]:
         text += f"\n\nQuick fix: {rule.fix}"
     tags = ["urdf", FAMILY_TAGS.get(rule.family, "urdf")]
     tags += [need for need in rule.needs if need not in tags]
+    link = help_uri(docs_url, rule)
     return {
         "id": rule.code,
+        **({"helpUri": link} if link else {}),
         "name": rule.name,
         "shortDescription": {"text": _clip(rule.summary)},
         "fullDescription": {"text": _clip(rule.section("What it does") or rule.summary)},
@@ -210,7 +225,9 @@ def document(findings: Sequence[Finding], run: RunInfo) -> dict[str, Any]:
                         "name": "urdflint",
                         "version": run.tool_version,
                         "informationUri": INFORMATION_URI,
-                        "rules": [_rule_descriptor(code, samples[code]) for code in codes],
+                        "rules": [
+                            _rule_descriptor(code, samples[code], run.docs_url) for code in codes
+                        ],
                     }
                 },
                 "columnKind": "unicodeCodePoints",
