@@ -206,6 +206,9 @@ def test_an_edit_in_the_urdf_computes_again_and_reuses_the_meshes(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     pytest.importorskip("trimesh")
+    from urdflint.cache import MEMORY
+
+    MEMORY.clear()  # facts an earlier test of this process kept would not reach this folder
     robot = copy_tree(MESH_RULE, tmp_path / "robot") / "good.urdf"
     lint(robot, Cache(tmp_path / "cache"))
     text = robot.read_text()
@@ -217,8 +220,6 @@ def test_an_edit_in_the_urdf_computes_again_and_reuses_the_meshes(
 
     original = mesh_cache.trimesh_load
     monkeypatch.setattr(mesh_cache, "trimesh_load", lambda *a: loads.append(a) or original(*a))
-    from urdflint.cache import MEMORY
-
     MEMORY.clear()
     found = lint(robot, Cache(tmp_path / "cache"))
     assert count == [1]

@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import copy
 import os
+import signal
 import sys
 import time
 from collections.abc import Callable, Iterable
@@ -32,6 +33,9 @@ State = dict[str, tuple[int, int] | None]  # path -> (mtime ns, size), None: abs
 
 def run(args: argparse.Namespace, check: Callable[[argparse.Namespace], int]) -> int:
     """Watch ``check(args)`` (the ``check`` command without ``--watch``) until Ctrl-C."""
+    # Ctrl-C must stop the watch even when started with SIGINT ignored (a background job,
+    # a test runner's worker): Python then installs no KeyboardInterrupt handler itself
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     once = copy.copy(args)
     once.watch = False
     once.jobs = 1
