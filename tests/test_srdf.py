@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from unittest.mock import ANY
 
 import pytest
 
@@ -97,6 +98,36 @@ def test_moveit_config_setup_assistant_pairs_urdf_and_srdf(tmp_path: Path) -> No
     assert (path, how) == (srdf, "setup-assistant")
     codes = sorted(code for _, _, code, _ in m_findings(urdf))
     assert codes == ["M002", "M009"]  # paired although the robot names differ
+
+
+def test_a_setup_assistant_pairs_only_the_xacro_variant_it_was_made_for(tmp_path: Path) -> None:
+    """Kinova's kortex: one gen3.xacro, a MoveIt config per variant (xacro_args dof:=6 and
+    dof:=7, both with gripper:=robotiq_2f_85); the SRDF of another variant is not paired."""
+    description = tmp_path / "arm_description"
+    write(description / "package.xml", PACKAGE_XML.format("arm_description"))
+    entry = write(
+        description / "robots" / "arm.urdf.xacro",
+        '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:arg name="dof" default=""/>\n  <xacro:arg name="gripper" default=""/>\n'
+        + URDF.split("\n", 2)[2],
+    )
+    srdfs = {}
+    for dof in ("6", "7"):
+        moveit = tmp_path / f"arm_{dof}dof_moveit_config"
+        write(moveit / "package.xml", PACKAGE_XML.format(moveit.name))
+        srdfs[dof] = write(moveit / "config" / "arm.srdf", GOOD)
+        write(
+            moveit / ".setup_assistant",
+            "moveit_setup_assistant_config:\n  urdf:\n    package: arm_description\n"
+            "    relative_path: robots/arm.urdf.xacro\n"
+            f"    xacro_args: gripper:=robotiq_2f_85 dof:={dof}\n"
+            "  srdf:\n    relative_path: config/arm.srdf\n",
+        )
+    for dof in ("6", "7"):
+        args = {"dof": dof, "gripper": "robotiq_2f_85"}
+        assert found(entry, xacro_args=args) == (srdfs[dof], ANY, "setup-assistant")
+    assert found(entry, xacro_args={"dof": "7"}) is None  # no gripper: neither variant
+    assert found(entry) is None  # the defaults: neither
 
 
 def test_no_srdf_no_findings(tmp_path: Path) -> None:

@@ -42,6 +42,8 @@ URDF_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf")
 SRDF_SUFFIXES = (".srdf", ".srdf.xacro")
 SRDF_FOLDERS = ("config", "srdf")
 SETUP_ASSISTANT = ".setup_assistant"
+XACRO_ARG_RE = re.compile(r"<xacro:arg\b[^>]*>")
+ATTR_RE = re.compile(r"""(\w+)\s*=\s*["']([^"']*)["']""")
 MAX_SETUP_BYTES = 1 << 20
 MAX_PACKAGE_DEPTH = 8  # folders above the file searched for its package.xml
 ROBOT_NAME_RE = re.compile(rb"<robot\b[^>]*?\bname\s*=\s*(?:\"([^\"]*)\"|'([^']*)')", re.S)
@@ -241,9 +243,13 @@ def _setup_assistant(doc: Document, real: Path, package: Path | None) -> Path | 
         config = _setup_config(folder) if _allowed(doc, folder) else None
         if config is None:
             continue
-        urdf_package, urdf_path, srdf_path = config
+        urdf_package, urdf_path, srdf_path, xacro_args = config
         base = doc.resolver.package_dir(urdf_package)
-        if base is not None and _resolved(base / urdf_path) == target:
+        if (
+            base is not None
+            and _resolved(base / urdf_path) == target
+            and _same_expansion(doc, real, xacro_args)
+        ):
             candidate = folder / srdf_path
             if _is_file(candidate) and _allowed(doc, candidate):
                 return candidate
@@ -264,8 +270,39 @@ def _resolved(path: Path) -> Path | None:
         return None
 
 
-def _setup_config(folder: Path) -> tuple[str, str, str] | None:
-    """``(URDF package, URDF relative path, SRDF relative path)`` of a ``.setup_assistant``."""
+def _same_expansion(doc: Document, real: Path, wanted: dict[str, str]) -> bool:
+    """Whether this run expands the URDF with the xacro arguments a ``.setup_assistant``
+    built its SRDF for (``xacro_args: gripper:=robotiq_2f_85 dof:=6``): each one given
+    with that value, or not given and declared with it as default. Kinova's kortex has a
+    MoveIt config per arm variant of one ``gen3.xacro``: each SRDF fits one variant."""
+    if not wanted:
+        return True
+    given = doc.settings.xacro_args_for(str(real)) if doc.settings is not None else {}
+    defaults: dict[str, str] = {}
+    if real.name.endswith(".xacro"):
+        with contextlib.suppress(OSError, UnicodeDecodeError):
+            text = real.read_text(encoding="utf-8")
+            for tag in XACRO_ARG_RE.finditer(text):
+                attrs = dict(ATTR_RE.findall(tag.group(0)))
+                if "name" in attrs:
+                    defaults.setdefault(attrs["name"], attrs.get("default", ""))
+    return all(given.get(name, defaults.get(name)) == value for name, value in wanted.items())
+
+
+def _xacro_args(value: Any) -> dict[str, str]:
+    """``{"dof": "6"}`` from ``xacro_args: dof:=6 gripper:=robotiq_2f_85``."""
+    found: dict[str, str] = {}
+    if isinstance(value, str):
+        for word in value.split():
+            name, sep, arg = word.partition(":=")
+            if sep and name:
+                found[name] = arg.strip("'\"")
+    return found
+
+
+def _setup_config(folder: Path) -> tuple[str, str, str, dict[str, str]] | None:
+    """``(URDF package, URDF relative path, SRDF relative path, xacro args)`` of a
+    ``.setup_assistant``."""
     path = folder / SETUP_ASSISTANT
     try:
         if not path.is_file() or path.stat().st_size > MAX_SETUP_BYTES:
@@ -285,7 +322,8 @@ def _setup_config(folder: Path) -> tuple[str, str, str] | None:
     values = (urdf.get("package"), urdf.get("relative_path"), srdf.get("relative_path"))
     if not all(isinstance(v, str) and v.strip() for v in values):
         return None
-    return values[0].strip(), values[1].strip(), values[2].strip()  # type: ignore[union-attr]
+    args = _xacro_args(urdf.get("xacro_args"))
+    return values[0].strip(), values[1].strip(), values[2].strip(), args  # type: ignore[union-attr]
 
 
 # -- reading -----------------------------------------------------------------------------------
