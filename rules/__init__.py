@@ -17,6 +17,7 @@ PACKAGES: dict[str, str] = {
     "M": "moveit",
     "N": "conventions",
     "P": "physics",
+    "D": "statics",
     "E": "engines",
     "U": "meta",
 }

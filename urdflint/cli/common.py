@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from urdflint.engine import options
+from urdflint.engine import options, statics_settings
 from urdflint.engine.options import UsageError
 
 EXIT_OK, EXIT_FINDINGS, EXIT_ERROR = 0, 1, 2
@@ -101,6 +101,7 @@ def model_options(parser: argparse.ArgumentParser) -> None:
         metavar="NAME:=VALUE",
         help="argument for xacro files (repeatable)",
     )
+    statics_settings.add_options(parser)  # --payload, --gravity: the D rules, info --statics
 
 
 def gate_options(parser: argparse.ArgumentParser) -> None:

@@ -18,6 +18,12 @@ def add_parser(sub: Any) -> None:
     info.add_argument("--format", choices=("text", "json"), default="text")
     info.add_argument("--config", type=Path, metavar="FILE")
     info.add_argument("--isolated", action="store_true")
+    info.add_argument(
+        "--statics",
+        action="store_true",
+        help="also each joint's largest gravity torque, its effort limit and margin, the "
+        "weakest joint and the payload it allows (Pinocchio; --payload, --gravity)",
+    )
     model_options(info)
 
 
@@ -36,6 +42,6 @@ def run(args: argparse.Namespace) -> int:
         doc = linter.load(path, args.path, settings, run_context(args))
     except OSError as exc:
         raise UsageError(f"{args.path}: cannot read: {exc.strerror or exc}") from None
-    text, ok = info.render(doc, args.format)
+    text, ok = info.render(doc, args.format, statics=args.statics)
     sys.stdout.write(text)
     return EXIT_OK if ok else EXIT_FINDINGS

@@ -12,7 +12,8 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-from urdflint.engine import registry
+from urdflint.engine import registry, statics_settings
+from urdflint.engine.stability_config import StabilitySettings, parse_stability
 from urdflint.model import targets
 from urdflint.model.finding import Severity
 
@@ -21,7 +22,7 @@ FAIL_ON = ("error", "warning", "info", "never")
 KEYS = frozenset({
     "select", "extend-select", "ignore", "severity", "per-file-ignores", "fail-on", "targets",
     "rules", "package-paths", "expect", "xacro-args", "per-file-xacro-args", "confirm", "srdf",
-    "profile", "cache-dir", "cache-max-size",
+    "profile", "cache-dir", "cache-max-size", "stability", "statics",
 })  # fmt: skip
 PROFILES = ("mobile", "industrial", "humanoid")  # the conventions rules (N family) to run
 ENGINES = ("mujoco", "pybullet", "drake", "pinocchio", "sdformat")  # --confirm: the E rules
@@ -77,6 +78,8 @@ class Settings:
     profile: str | None = None  # "mobile", "industrial" or "humanoid": REP conventions
     cache_dir: Path | None = None  # where the analysis cache lives (not a lint setting)
     cache_max_size: int | None = None  # its size limit in bytes (not a lint setting)
+    stability: StabilitySettings = field(default_factory=StabilitySettings)  # D003, info
+    statics: statics_settings.StaticsSettings = statics_settings.DEFAULT  # D001, D002, info
 
     def xacro_args_for(self, path: str) -> dict[str, str]:
         """``xacro-args``, then each matching ``per-file-xacro-args`` table (later wins)."""
@@ -235,6 +238,9 @@ def _inputs(settings: Settings, data: dict[str, Any], source: Path | None) -> Se
         settings = replace(settings, srdf=base / data["srdf"])
     if "profile" in data:
         settings = replace(settings, profile=profile("profile", data["profile"]))
+    settings = replace(settings, statics=statics_settings.read(data, ConfigError))
+    if "stability" in data:
+        settings = replace(settings, stability=parse_stability(data["stability"], ConfigError))
     if "cache-dir" in data or "cache-max-size" in data:
         from urdflint.cache import configured
 

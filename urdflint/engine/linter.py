@@ -33,7 +33,7 @@ LIBRARY_FAMILIES = frozenset({"X", "U"})  # what a xacro library file (no <link>
 # whose XML declaration or stray leading text was only blanked out (doc.repairs) is not
 # recovered: its tree is the one TinyXML reads, so every rule runs and nothing is marked.
 RECOVERED = " (from the part of the file that could be read after the X001 error)"
-RECOVERED_SKIPS = frozenset({"P"})
+RECOVERED_SKIPS = frozenset({"P", "D"})  # Pinocchio: the physics and statics families
 EXTRAS = optional.EXTRAS
 
 

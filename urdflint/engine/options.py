@@ -15,7 +15,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from urdflint.engine import config, registry
+from urdflint.engine import config, registry, statics_settings
 from urdflint.model import targets
 from urdflint.model.values import parse_number
 
@@ -139,6 +139,7 @@ class SettingsFinder:
         self.expect_mass = getattr(args, "expect_mass", None)
         self.expect_com = getattr(args, "expect_com", None)
         self.q = dict(args.q)
+        self.statics = (getattr(args, "payload", None), getattr(args, "gravity", None))
         self.isolated = args.isolated
         self.explicit = config.load(args.config) if args.config else None
         self.cache: dict[Path, config.Settings] = {}
@@ -182,4 +183,5 @@ class SettingsFinder:
                 expect = replace(expect, com_tolerance=tolerance)
         if self.q:
             expect = replace(expect, q={**expect.q, **self.q})
-        return replace(settings, expect=expect, **extra)
+        statics = statics_settings.apply(settings.statics, *self.statics)
+        return replace(settings, expect=expect, statics=statics, **extra)

@@ -37,6 +37,7 @@ FAMILIES: dict[str, str] = {
     "M": "MoveIt (SRDF)",
     "N": "naming conventions (REP profiles)",
     "P": "physics (Pinocchio)",
+    "D": "statics: gravity torques and stability (Pinocchio)",
     "E": "simulation engines (--confirm)",
     "U": "urdflint itself",
 }

@@ -81,6 +81,8 @@ def hover(doc: Any, findings: list[Finding], element: Any, tag: str) -> str | No
         parts.append(_link_text(doc, element, findings))
     elif element is not None and tag == "robot":
         parts.append(_robot_text(doc))
+    elif element is not None and tag == "joint":
+        parts.append(_joint_text(doc, element))
     text = "\n\n---\n\n".join(p for p in parts if p)
     return text or None
 
@@ -165,6 +167,39 @@ def _robot_text(doc: Any) -> str:
         masses = [m for m in (_mass(link.element) for link in doc.links) if m is not None]
         lines.append(f"total mass {_fmt(sum(masses))} kg (sum of the links' masses)")
         lines.append(f"centre of mass: not computed ({physics.reason})")
+    return "  \n".join(lines)
+
+
+HOVER_COORDINATES = 64  # larger models: the hover gives the bound only, no search
+
+
+def _joint_text(doc: Any, element: Any) -> str:
+    """The joint's gravity load against its effort limit (Pinocchio installed only; the
+    statics computed once per document, shared with the D rules)."""
+    import importlib.util
+
+    from urdflint.engine import statics
+    from urdflint.model.values import fmt
+
+    name = element.get("name")
+    head = f"**joint `{name}`** ({element.get('type')})"
+    if importlib.util.find_spec("pinocchio") is None or not doc.physics.built:
+        return head
+    found = statics.of(doc)
+    if not found.ok or name not in found.joints:
+        return head
+    load = found.joints[name]
+    unit = load.unit
+    lines = [head, f"gravity load at most {load.bound:.3g} {unit} (bound)"]
+    if len(found.joints) <= HOVER_COORDINATES:
+        load = found.load(name)
+        lines[1] = f"gravity load up to {load.needed:.3g} {unit} {statics.describe(found, load)}"
+    if load.effort:
+        margin = "" if load.margin is None else f", margin {load.margin:.3g}"
+        proven = ", proven: its bound is within it" if load.proven else ""
+        lines.append(f"effort limit {fmt(load.effort)} {unit}{margin}{proven}")
+    if load.passive:
+        lines.append("passive: no <transmission> or <ros2_control> command drives it")
     return "  \n".join(lines)
 
 

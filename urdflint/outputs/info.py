@@ -40,9 +40,14 @@ def summary(doc: Document) -> dict[str, Any] | None:
     }
 
 
-def render(doc: Document, fmt_name: str = "text") -> tuple[str, bool]:
-    """The ``info`` output as text or JSON, and whether the model was built (exit 0)."""
+def render(doc: Document, fmt_name: str = "text", statics: bool = False) -> tuple[str, bool]:
+    """The ``info`` output as text or JSON, and whether the model was built (exit 0);
+    ``statics`` adds the gravity loads (``--statics``, :mod:`urdflint.outputs.statics_info`)."""
     data = collect(doc)
+    if statics and "links" in data:
+        from urdflint.outputs import statics_info
+
+        data["statics"] = statics_info.collect(doc)
     ok = bool(data["built"]) or bool(data.get("pinocchio_missing"))
     ok = ok and not data.get("q_problems")
     if fmt_name == "json":
@@ -182,6 +187,10 @@ def text(data: dict[str, Any]) -> str:
     else:
         lines.append(f"mass    {urdf_sum} (sum of <mass> values)")
         lines.append(f"model not built: {data['problem']}")
+    if "statics" in data:
+        from urdflint.outputs import statics_info
+
+        lines += statics_info.text(data["statics"])
     return "\n".join(lines) + "\n"
 
 
