@@ -29,6 +29,9 @@ if TYPE_CHECKING:
 EXTRA_SECTIONS: tuple[tuple[str, str], ...] = (("base", "urdflint.engine.stability"),)
 
 
+WHERE_SHOWN = 4  # joint values in the text table's where column (JSON: all)
+
+
 def collect(doc: Document) -> dict[str, Any]:
     """The ``statics`` entry of ``info --format json``."""
     from urdflint.engine import statics as S
@@ -147,7 +150,10 @@ def _cells(row: dict[str, Any]) -> tuple[str, ...]:
         margin = f"{row['margin']:.3g}"
     if row["proven"] and not row["passive"]:
         margin += " proven"
-    where = ", ".join(f"{k}={fmt(v)}" for k, v in row["at"].items())
+    at = list(row["at"].items())
+    where = ", ".join(f"{k}={fmt(v)}" for k, v in at[:WHERE_SHOWN])
+    if len(at) > WHERE_SHOWN:  # a hand's fingers: --format json lists every one
+        where += f", … {len(at) - WHERE_SHOWN} more"
     return (
         row["name"],
         row["type"],
