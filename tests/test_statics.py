@@ -357,3 +357,18 @@ def test_a_seven_dof_arm_is_fast() -> None:
     for name in found.joints:
         found.load(name)
     assert time.perf_counter() - start < 1.0  # about 0.07 s; generous for a loaded machine
+
+
+@pytest.mark.slow  # every corpus robot's statics, stability and reach
+@needs_corpus
+@pytest.mark.parametrize("model", corpus_models(), ids=lambda p: p.parent.name)
+def test_info_statics_json_of_every_corpus_robot_is_json(model: Path) -> None:
+    """Panda's bounds and flags were numpy scalars once: json.dumps raised."""
+    from urdflint.engine import linter
+    from urdflint.outputs import info
+
+    doc = linter.load(model, str(model), config.Settings())
+    text, _ = info.render(doc, "json", statics=True)
+    statics_data = json.loads(text).get("statics")
+    for row in statics_data["joints"] if statics_data else []:
+        assert type(row["proven"]) is bool and type(row["bound"]) is float

@@ -51,11 +51,19 @@ def render(doc: Document, fmt_name: str = "text", statics: bool = False) -> tupl
     ok = bool(data["built"]) or bool(data.get("pinocchio_missing"))
     ok = ok and not data.get("q_problems")
     if fmt_name == "json":
-        return json.dumps(data, indent=2) + "\n", ok
+        return json.dumps(data, indent=2, default=_plain) + "\n", ok
     return text(data), ok
 
 
 # -- data ----------------------------------------------------------------------------------
+
+
+def _plain(value: Any) -> Any:
+    """A numpy scalar an analysis left in the data, as the Python value it holds."""
+    item = getattr(value, "item", None)
+    if callable(item):
+        return item()
+    raise TypeError(f"{type(value).__name__} is not JSON serialisable")
 
 
 def collect(doc: Document) -> dict[str, Any]:

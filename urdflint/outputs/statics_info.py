@@ -69,19 +69,24 @@ def collect(doc: Document) -> dict[str, Any]:
     return data
 
 
+def _float(value: Any) -> float | None:
+    """A plain float for JSON (numpy's scalars are not serialisable), ``None`` kept."""
+    return None if value is None else float(value)
+
+
 def _row(load: Any) -> dict[str, Any]:
     margin = load.margin
     return {
         "name": load.name,
         "type": load.kind,
         "unit": load.unit,
-        "needed": load.needed,
-        "at": dict(load.at),
-        "bound": load.bound,
-        "effort": load.effort,
-        "margin": margin if margin is not None and math.isfinite(margin) else None,
-        "proven": load.proven,
-        "passive": load.passive,
+        "needed": _float(load.needed),
+        "at": {name: float(value) for name, value in load.at.items()},
+        "bound": _float(load.bound),
+        "effort": _float(load.effort),
+        "margin": float(margin) if margin is not None and math.isfinite(margin) else None,
+        "proven": bool(load.proven),
+        "passive": bool(load.passive),
     }
 
 
