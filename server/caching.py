@@ -62,7 +62,7 @@ def answered(job: CheckJob, check: Callable[[CheckJob, Any], dict[str, Any]]) ->
         deps.digest_file(job.zip) if job.zip is not None else None,
         job.name,
         keys.settings_key(job.settings),
-        job.fmt, job.svg, job.matrix, job.fix, job.unsafe_fixes, job.scene,
+        job.fmt, job.svg, job.matrix, job.fix, job.unsafe_fixes, job.scene, job.statics,
         keys.canonical(job.zip_limits),
     )  # fmt: skip
     found = cache.get("response", *parts)

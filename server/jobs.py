@@ -54,6 +54,7 @@ class CheckJob:
     fix: bool = False  # POST /v1/fix: fix the upload first, answer the fixed text and diff
     unsafe_fixes: bool = False  # ... with the fixes that change the physics too
     scene: bool = False  # add the robot as a 3D scene (``scene`` option)
+    statics: bool = False  # add the gravity loads and the base's stability (``statics``)
     docs_url: str | None = None  # SARIF helpUri: this service's rule pages, /rules/{code}
 
 
@@ -174,6 +175,8 @@ def _answer(
     from urdflint.outputs import formatters
     from urdflint.outputs.report import FAIL_LEVEL, model_summary, skipped_note
 
+    from . import extras
+
     settings = job.settings
     scrubbed: list[Finding] = [scrub.finding(f) for f in result.findings]
     findings = list(scrubbed)
@@ -213,14 +216,7 @@ def _answer(
     threshold = FAIL_LEVEL.get(settings.fail_on)
     failing = threshold is not None and any(f.severity >= threshold for f in findings)
     data["passed"] = not (failing or result.crashed)
-    if job.svg and doc is not None:
-        picture = _svg(doc, findings)
-        if picture is not None:
-            data["svg"] = {job.name: picture}
-    if job.scene and doc is not None:
-        scene = _scene(doc, findings, Path(job.folder) / "files", scrub)
-        if scene is not None:
-            data["scene"] = {job.name: scene}
+    data.update(extras.added(job, doc, findings, scrub))  # svg, scene, statics
     return reply(200, data)
 
 
@@ -235,37 +231,6 @@ def _rendered(fmt: str, findings: list[Any], run_info: Any) -> dict[str, Any]:
             return reply(422, {"detail": "the sarif format is not available on this server"})
         return reply(200, sarif.render(findings, run_info), "application/sarif+json")
     return reply(200, formatters.get(fmt)(findings, run_info), "text/plain; charset=utf-8")
-
-
-def _svg(doc: Any, findings: list[Any]) -> str | None:
-    """The kinematic tree as SVG, or ``None`` when it cannot be drawn."""
-    try:
-        from urdflint.outputs.svg import render_tree  # type: ignore[attr-defined,unused-ignore]
-    except ImportError:
-        return None
-    try:
-        return str(render_tree(doc, findings))
-    except Exception:  # a picture must never cost the findings
-        log.warning("the kinematic tree picture failed:\n%s", traceback.format_exc())
-        return None
-
-
-def _scene(doc: Any, findings: list[Any], root: Path, scrub: Scrub) -> dict[str, Any] | None:
-    """The robot as a 3D scene (meshes read inside ``root`` only; why one is missing told
-    without the server's folders), or ``None``."""
-    try:
-        from urdflint.outputs.scene import build_scene  # type: ignore[attr-defined,unused-ignore]
-    except ImportError:
-        return None
-    try:
-        with contextlib.chdir(root):
-            scene = build_scene(doc, findings)
-    except Exception:  # a picture must never cost the findings
-        log.warning("the 3D scene failed:\n%s", traceback.format_exc())
-        return None
-    if scene is not None:  # the meshes' base64 holds no text worth scrubbing
-        scene.update({key: scrub.value(scene[key]) for key in ("links", "joints", "notes")})
-    return scene
 
 
 class Scrub:

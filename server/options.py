@@ -18,6 +18,10 @@ are applied by the CLI's own :class:`~urdflint.engine.options.SettingsFinder`, s
 ``xacro_args``           ``NAME:=VALUE`` pairs, e.g. ``a:=1,b:=2`` (a comma inside a value is
                          kept when what follows has no ``:=``)
 ``q``                    ``JOINT=VALUE`` joint positions for the mass and COM
+``payload``              ``KG[@LINK]``, as ``--payload``: a point mass for the statics (D001,
+                         D002), e.g. ``2@tool0`` (no link: the end of the longest chain)
+``gravity``              ``X,Y,Z`` m/s² in the root link's frame, as ``--gravity`` (default
+                         ``0,0,-9.81``)
 ``config``               JSON object with ``[tool.urdflint]`` keys (``select``, ``severity``,
                          ``rules``, ``expect``, ``per-file-ignores``...). ``package-paths`` is
                          refused: packages come from the meshes zip, never from the
@@ -31,6 +35,12 @@ are applied by the CLI's own :class:`~urdflint.engine.options.SettingsFinder`, s
                          total triangle budget), centre of mass, equivalent inertia box,
                          the joints' axes and the indices of each one's findings
                          (``urdflint.outputs.scene``)
+``statics``              true to add ``"statics": {file: {...}}``: what ``urdflint info
+                         --statics --format json`` gives under ``statics`` (each actuated
+                         joint's largest gravity load and where, its effort and margin, the
+                         weakest joint, the payload it allows; for a mobile base the support
+                         polygon, the centre of mass over it, the stability margin, the
+                         tipping angle and the reach), from the same Pinocchio model
 ``matrix``               true to add ``"matrix"``: one row per target saying whether it loads
                          the model, loads it with changes, refuses it or crashes, and the
                          findings that decide it (as ``urdflint check --matrix``; without a
@@ -64,7 +74,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from urdflint.engine import config
+from urdflint.engine import config, statics_settings
 from urdflint.engine import options as values_of
 from urdflint.engine.config import Settings
 from urdflint.model import targets
@@ -72,7 +82,7 @@ from urdflint.model import targets
 LISTS = ("select", "ignore", "target", "xacro_args", "q", "confirm")
 SCALARS = (
     "fail_on", "expect_mass", "expect_com", "config", "format", "svg", "matrix", "filename",
-    "unsafe_fixes", "scene",
+    "unsafe_fixes", "scene", "payload", "gravity", "statics",
 )  # fmt: skip
 ALIASES = {"targets": "target", "xacro_arg": "xacro_args", "fail": "fail_on"}
 FORMATS = ("json", "sarif", "text", "github")
@@ -99,6 +109,7 @@ class Options:
     fix: bool = False  # POST /v1/fix: apply the automatic fixes to the upload
     unsafe_fixes: bool = False  # ... the ones that change the physics too
     scene: bool = False  # add the 3D scene (``scene`` option)
+    statics: bool = False  # add the gravity loads and the base's stability (``statics``)
 
 
 def canonical(name: str) -> str | None:
@@ -252,6 +263,8 @@ def parse(
         expect_mass=_typed("expect_mass", _last(values, "expect_mass"), values_of.expect_mass),
         expect_com=_typed("expect_com", _last(values, "expect_com"), values_of.expect_com),
         q=q,
+        payload=_typed("payload", _last(values, "payload"), statics_settings.payload_option),
+        gravity=_typed("gravity", _last(values, "gravity"), statics_settings.gravity_option),
         confirm=_engines(values),
         isolated=True,
         config=None,
@@ -264,5 +277,6 @@ def parse(
     settings = finder._apply(base)
     if settings.confirm and not allow_confirm:
         raise OptionError(NO_CONFIRM)
-    scene = _flag(values, "scene")
-    return Options(settings, fmt, svg, _last(values, "filename"), matrix, fix, unsafe, scene)
+    scene, statics = _flag(values, "scene"), _flag(values, "statics")
+    name = _last(values, "filename")
+    return Options(settings, fmt, svg, name, matrix, fix, unsafe, scene, statics)

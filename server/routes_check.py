@@ -35,6 +35,12 @@ SCENE_HELP = (
     "collision shapes, meshes (base64, within a triangle budget), centres of mass, "
     "equivalent inertia boxes, joint axes and which findings each link has"
 )
+STATICS_HELP = (
+    "true: add what 'urdflint info --statics --format json' gives under 'statics': each "
+    "actuated joint's largest gravity torque and where, its effort limit and margin, the "
+    "weakest joint, the payload it allows; for a mobile base, the support polygon, the "
+    "centre of mass over it, the stability margin, the tipping angle and the reach"
+)
 TARGET_HELP = "|".join((*targets.TARGETS, targets.ALL))
 FORM_FIELD_BYTES = 128 * 1024
 NOT_UTF8 = (
@@ -67,6 +73,8 @@ CHECK_BODY = {
                     "target": {"type": "string"},
                     "expect_mass": {"type": "string"},
                     "expect_com": {"type": "string"},
+                    "payload": {"type": "string", "description": "KG[@LINK], as --payload"},
+                    "gravity": {"type": "string", "description": "X,Y,Z m/s², as --gravity"},
                     "xacro_args": {"type": "string"},
                     "config": {"type": "string", "description": "JSON, [tool.urdflint] keys"},
                     "svg": {"type": "boolean"},
@@ -74,6 +82,11 @@ CHECK_BODY = {
                         "type": "boolean",
                         "description": "add the robot as a 3D scene (poses, shapes, meshes, "
                         "centres of mass, inertia boxes, joint axes) for the web page",
+                    },
+                    "statics": {
+                        "type": "boolean",
+                        "description": "add the gravity torques against the effort limits "
+                        "and, for a mobile base, the support polygon and the stability margin",
                     },
                     "matrix": {
                         "type": "boolean",
@@ -123,10 +136,13 @@ async def check(
     expect_com: Annotated[str | None, Query(description="X,Y,Z[±TOL], as --expect-com")] = None,
     xacro_args: Annotated[list[str] | None, Query(description="NAME:=VALUE[,NAME:=VALUE]")] = None,
     q: Annotated[list[str] | None, Query(description="JOINT=VALUE positions for mass/COM")] = None,
+    payload: Annotated[str | None, Query(description="KG[@LINK], as --payload (D rules)")] = None,
+    gravity: Annotated[str | None, Query(description="X,Y,Z m/s², as --gravity")] = None,
     config: Annotated[str | None, Query(description="JSON object of [tool.urdflint] keys")] = None,
     format: Annotated[str, Query(description="json|sarif|text|github")] = "json",
     svg: Annotated[str | None, Query(description="true: add the kinematic tree as SVG")] = None,
     scene: Annotated[str | None, Query(description=SCENE_HELP)] = None,
+    statics: Annotated[str | None, Query(description=STATICS_HELP)] = None,
     matrix: Annotated[
         str | None, Query(description="true: add what each target does with the model")
     ] = None,
@@ -250,6 +266,7 @@ async def _lint(
             fix=options.fix,
             unsafe_fixes=options.unsafe_fixes,
             scene=options.scene,
+            statics=options.statics,
             docs_url=f"{str(request.base_url).rstrip('/')}/rules/{{code}}",
         )
         try:

@@ -17,7 +17,7 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Query, Request
 from fastapi.responses import Response
 
-from .routes_check import CHECK_BODY, SCENE_HELP, TARGET_HELP, handle
+from .routes_check import CHECK_BODY, SCENE_HELP, STATICS_HELP, TARGET_HELP, handle
 
 
 def _body() -> dict[str, Any]:
@@ -70,9 +70,12 @@ async def fix(
     expect_com: Annotated[str | None, Query(description="X,Y,Z[±TOL], as --expect-com")] = None,
     xacro_args: Annotated[list[str] | None, Query(description="NAME:=VALUE[,NAME:=VALUE]")] = None,
     q: Annotated[list[str] | None, Query(description="JOINT=VALUE positions for mass/COM")] = None,
+    payload: Annotated[str | None, Query(description="KG[@LINK], as --payload (D rules)")] = None,
+    gravity: Annotated[str | None, Query(description="X,Y,Z m/s², as --gravity")] = None,
     config: Annotated[str | None, Query(description="JSON object of [tool.urdflint] keys")] = None,
     svg: Annotated[str | None, Query(description="true: add the kinematic tree as SVG")] = None,
     scene: Annotated[str | None, Query(description=SCENE_HELP)] = None,
+    statics: Annotated[str | None, Query(description=STATICS_HELP)] = None,
     matrix: Annotated[
         str | None, Query(description="true: add what each target does with the model")
     ] = None,

@@ -114,9 +114,63 @@ def test_show_settings_of_a_file_without_configuration(capsys, monkeypatch) -> N
           profile           none: the N rules do not run (default)
           confirm           none: no engine loads the model (default)
           expect            nothing: P003 and P004 do not run (default)
+          statics           payload: none (default)
+                            gravity: 0, 0, -9.81 m/s², root link frame (default)
+          stability         contact-links: found by the heuristic (default)
+                            contact-tolerance: 0.01 m (default)
+                            samples: 512 (default)
           cache             not used (--no-cache)
           packages          none used
         """)  # fmt: skip
+
+
+STATICS = """\
+[tool.urdflint.statics]
+payload = "2@tool0"
+gravity = [0, 0, -9.81]
+
+[tool.urdflint.stability]
+contact-links = ["wheel_left", "wheel_right"]
+samples = 64
+"""
+
+
+def test_show_settings_of_statics_and_stability(capsys, tmp_path: Path, monkeypatch) -> None:
+    """payload and gravity: the command line wins key by key over [tool.urdflint.statics];
+    a configured value equal to the default is the default."""
+    (tmp_path / "pyproject.toml").write_text(STATICS)
+    shutil.copy(BROKEN, tmp_path / "arm.urdf")
+    monkeypatch.chdir(tmp_path)
+    code, out, _ = run(capsys, "--show-settings", "--no-cache", "arm.urdf")
+    assert code == 0
+    lines = out.splitlines()
+    start = lines.index("  statics           payload: 2 kg at 'tool0' (pyproject.toml)")
+    assert lines[start + 1 : start + 5] == [
+        "                    gravity: 0, 0, -9.81 m/s², root link frame (default)",
+        "  stability         contact-links: wheel_left, wheel_right (pyproject.toml)",
+        "                    contact-tolerance: 0.01 m (default)",
+        "                    samples: 64 (pyproject.toml)",
+    ]
+    code, out, _ = run(capsys, "--show-settings", "--no-cache", "--payload", "0.5",
+                       "--gravity=9.81,0,0", "arm.urdf")  # fmt: skip
+    lines = out.splitlines()
+    start = lines.index(
+        "  statics           payload: 0.5 kg at the end of the longest chain (command line)"
+    )
+    gravity = "gravity: 9.81, 0, 0 m/s², root link frame (command line)"
+    assert lines[start + 1] == " " * 20 + gravity
+    code, out, _ = run(capsys, "--show-settings", "--format", "json", "--no-cache",
+                       "--gravity=9.81,0,0", "arm.urdf")  # fmt: skip
+    [one] = json.loads(out)["files"]
+    assert one["statics"] == {
+        "payload": {"value": {"kg": 2.0, "link": "tool0"}, "from": "pyproject.toml"},
+        "gravity": {"value": [9.81, 0.0, 0.0], "from": "command line"},
+    }
+    assert one["stability"] == {
+        "contact-links": {"value": ["wheel_left", "wheel_right"], "from": "pyproject.toml"},
+        "contact-tolerance": {"value": 0.01, "from": "default"},
+        "samples": {"value": 64, "from": "pyproject.toml"},
+    }
 
 
 CONFIG = """\

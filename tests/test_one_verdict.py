@@ -58,9 +58,10 @@ def _from_json(data: dict) -> Verdict:
     return {(f["code"], f["line"], f["severity"], f["message"]) for f in data["findings"]}
 
 
-def cli(path: Path) -> Verdict:
+def cli(path: Path, *options: str) -> Verdict:
     done = subprocess.run(
-        [sys.executable, "-m", "urdflint", "check", "--format", "json", "--no-cache", path.name],
+        [sys.executable, "-m", "urdflint", "check", "--format", "json", "--no-cache", *options,
+         path.name],
         cwd=path.parent, capture_output=True, text=True, timeout=300, check=False,
     )  # fmt: skip
     assert done.returncode in (0, 1), done.stderr
@@ -162,3 +163,26 @@ async def test_cli_hook_api_and_editor_agree(
     assert precommit(path) == expected
     assert api(service, path) == expected
     assert await editor(client, path) == expected
+
+
+@pytest.mark.parametrize(
+    "statics",
+    [{"payload": "2@tool"}, {"payload": "2@tool", "gravity": "0,0,-12"}, {"gravity": "0,0,-30"}],
+    ids=["payload", "payload-and-gravity", "gravity"],
+)
+def test_statics_options_give_the_cli_s_d001_through_the_api(
+    service: TestClient, tmp_path: Path, statics: dict[str, str]
+) -> None:
+    """``payload`` and ``gravity`` on ``/v1/check`` are ``--payload`` and ``--gravity``: the
+    same D001 findings (the fixture's own payload configuration is left behind)."""
+    path = tmp_path / "arm.urdf"
+    shutil.copy(FIXTURES / "rules" / "D001" / "bad_payload.urdf", path)
+    flags = [f"--{name}={value}" for name, value in statics.items()]
+    expected = {f for f in cli(path, "--isolated", *flags) if f[0] == "D001"}
+    assert expected, "no D001 with these statics proves nothing"
+    files = {"urdf": (path.name, path.read_bytes(), "application/xml")}
+    answer = service.post("/v1/check", files=files, data=statics)
+    assert answer.status_code == 200, answer.text
+    assert {f for f in _from_json(answer.json()) if f[0] == "D001"} == expected
+    plain = service.post("/v1/check", files=files)  # without them: the elbow holds
+    assert [f for f in _from_json(plain.json()) if f[0] == "D001"] == []

@@ -372,3 +372,19 @@ def test_info_statics_json_of_every_corpus_robot_is_json(model: Path) -> None:
     statics_data = json.loads(text).get("statics")
     for row in statics_data["joints"] if statics_data else []:
         assert type(row["proven"]) is bool and type(row["bound"]) is float
+
+
+@pytest.mark.parametrize(
+    ("option", "words"),
+    [
+        ("--payload=1e308@tool", "more than 1e+06 kg"),
+        ("--gravity=1e308,0,0", "stronger than 1000 m/s²"),
+        ("--gravity=0,0,nan", "expected X,Y,Z"),
+    ],
+)
+def test_absurd_payload_or_gravity_is_a_usage_error_not_a_crashed_rule(
+    capsys: pytest.CaptureFixture[str], option: str, words: str
+) -> None:
+    with pytest.raises(SystemExit) as stopped:
+        main(["check", "--isolated", option, str(D001 / "bad.urdf")])
+    assert stopped.value.code == 2 and words in capsys.readouterr().err

@@ -52,8 +52,9 @@ the data sheet. If the real joint is counterbalanced, model the spring (a `<dyna
 stiffness where the simulator supports one, or gravity compensation in the controller)
 and suppress D001 on it with a reason. The unsafe fix (`urdflint fix --unsafe-fixes`) raises
 the effort to the torque needed × 1.25 (a quarter more to accelerate), rounded up to two
-digits: a value to check against the data sheet, not a rating. A payload or gravity set for the check
-(`--payload`, `--gravity`) that the robot is not meant for is fixed in the configuration.
+digits: a value to check against the data sheet, not a rating. A payload or gravity set for
+the check (`--payload`, `--gravity`) that the robot is not meant for is fixed in the
+configuration.
 """
 
 from __future__ import annotations

@@ -4,10 +4,11 @@
 // Blob URL download (no markup is ever built from it).
 // The tree SVG is parsed as XML and rebuilt from an allowlist of elements and
 // attributes (see cleanSvg), so even a broken server could not inject script.
-// The outline (outline.js) and the 3D view (scene.js) are modules fed through events on
-// document: "urdflint:results" carries the answer's scene; "urdflint:select" {link, from}
-// is sent by whichever part the reader clicks (a finding row, the outline, the diagram,
-// the 3D view) and every part shows that link.
+// The outline (outline.js), the 3D view (scene.js) and the statics panel (statics.js) are
+// modules fed through events on document: "urdflint:results" carries the answer's scene and
+// statics; "urdflint:select" {link, from} is sent by whichever part the reader clicks (a
+// finding row, the outline, the diagram, the 3D view, a joint of the statics panel) and
+// every part shows that link.
 "use strict";
 
 (function () {
@@ -112,6 +113,7 @@
     }
     data.append("svg", "true");
     data.append("scene", "true");
+    data.append("statics", "true"); // the statics panel and the support polygon
     if ($("want-matrix").checked) data.append("matrix", "true");
     const engines = confirmEngines();
     if (engines.length && $("want-confirm").checked && !$("confirm-field").hidden) {
@@ -256,8 +258,9 @@
     picked.scene = scene;
     picked.findings = doc.findings;
     showPicked(null);
+    const statics = doc.statics && typeof doc.statics === "object" ? Object.values(doc.statics)[0] || null : null;
     document.dispatchEvent(new CustomEvent("urdflint:results", {
-      detail: { scene, findings: doc.findings, rows: rowIds, started },
+      detail: { scene, findings: doc.findings, rows: rowIds, started, statics },
     }));
   }
 

@@ -6,8 +6,11 @@
 // colour. The robot comes first: visuals in their own colours (or a neutral grey), the
 // camera framed on them; the overlays (centres of mass, inertia boxes, joint axes, finding
 // colours) show for the selected link only, unless the reader asks for those of every
-// flagged link or of every link. Renders on demand (after a change), never in a loop.
-// Events on document: urdflint:results {scene, started} -> draw; urdflint:select {link}
+// flagged link or of every link. A mobile base's support polygon (from the answer's
+// "statics") is drawn on the ground with the projection of the whole robot's centre of mass,
+// in green (it stands), amber (a tilt under 10 degrees tips it) or red (it falls), when the
+// "support polygon" box is ticked. Renders on demand (after a change), never in a loop.
+// Events on document: urdflint:results {scene, statics, started} -> draw; urdflint:select {link}
 // -> highlight; a click on a link sends urdflint:select {link, from: "scene"}.
 // three.js loads on the first check (or when the form is sent), not with the page.
 
@@ -17,8 +20,10 @@ const COLLISION = "#0e9384";
 const INERTIA = "#7a5af8";
 const COM = "#101828";
 const AXIS = "#3e4fd8";
+const SUPPORT = { stands: "#079455", close: "#dc6803", falls: "#d92d20" }; // by the stability margin
+const TIPS = 10; // degrees: a base that a smaller tilt tips over is close to tipping
 // "stand": the collision geometry of a link with no visual, shown in its place
-const GROUPS = ["visual", "stand", "collision", "inertia", "com", "axes"];
+const GROUPS = ["visual", "stand", "collision", "inertia", "com", "axes", "support"];
 const OVERLAYS = ["com", "inertia", "axes", "findings"];
 const FILLS = 6; // inertia boxes past which only their edges are drawn (the selected one's filled)
 const MARKER = 0.009; // a centre of mass's radius per metre from the camera: ~5 px, always
@@ -40,7 +45,7 @@ let view = null; // {THREE, renderer, scene, camera, controls, ...}; null when t
 let current = null; // the drawn robot: {groups, links: Map(name -> {objects, com, marks}), size}
 // overlays: "selected" (the selected link's only), "flagged" (also every link with a
 // finding of their kind), "all"; com, inertia, axes, findings: which overlays there are
-const show = { visual: true, collision: false, overlays: "selected", com: true, inertia: true, axes: true, findings: true };
+const show = { visual: true, collision: false, overlays: "selected", com: true, inertia: true, axes: true, findings: true, support: false };
 
 function three() {
   if (!loading) {
@@ -160,8 +165,8 @@ function resize() {
 
 function draw() {
   if (!view || !current) return;
-  for (const marker of current.groups.com.children) {
-    marker.scale.setScalar(view.camera.position.distanceTo(marker.position) * MARKER);
+  for (const marker of [...current.groups.com.children, ...current.groups.support.children]) {
+    if (marker.userData.marker) marker.scale.setScalar(view.camera.position.distanceTo(marker.position) * MARKER);
   }
   view.renderer.render(view.scene, view.camera);
 }
@@ -272,6 +277,7 @@ function addInertia(robot, link) {
     robot.links.get(link.name).marks.fill = fill;
   }
   const marker = new THREE.Group(); // unit spheres, scaled to a constant size on screen
+  marker.userData.marker = true;
   const dot = new THREE.Mesh(new THREE.SphereGeometry(1, 16, 12), MATERIALS.marker(THREE, { color: colour || COM }));
   dot.material.userData = { flagged: colour, plain: COM };
   robot.marks.push(dot.material);
@@ -328,7 +334,59 @@ function bounds(THREE, robot, links) {
   return box;
 }
 
-function build(data) {
+function baseOf(statics) {
+  // the answer's mobile base with a support polygon: {support, stance, kind}, or null
+  const sections = statics && Array.isArray(statics.sections) ? statics.sections : [];
+  const found = sections.find((s) => s && s.name === "base");
+  const data = found && found.data;
+  const support = data && data.mobile ? data.support : null;
+  if (!support || !Array.isArray(support.polygon) || support.polygon.length < 2) return null;
+  const stance = data.given || data.zero;
+  if (!stance || !Array.isArray(stance.com)) return null;
+  const tilt = stance.tipping_angle_deg;
+  const kind = stance.margin_mm < 0 ? "falls" : typeof tilt === "number" && tilt < TIPS ? "close" : "stands";
+  return { support, stance, kind };
+}
+
+function addSupport(robot, base) {
+  // the support polygon on the ground (its edge and a light fill) and the whole robot's
+  // centre of mass over it (a dot on the ground, a dashed line down from the centre of
+  // mass), drawn over the robot: the polygon is under the base
+  const { THREE } = view;
+  robot.supportPoints = [];
+  if (!base) return;
+  const colour = SUPPORT[base.kind];
+  const z = base.support.ground;
+  const corners = base.support.polygon.map(([x, y]) => new THREE.Vector3(x, y, z));
+  const group = robot.groups.support;
+  const edge = new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(corners), MATERIALS.edges(THREE, { color: colour, depthTest: false }));
+  edge.renderOrder = 12;
+  group.add(edge);
+  if (corners.length >= 3) {
+    const shape = new THREE.Shape(corners.map((p) => new THREE.Vector2(p.x, p.y)));
+    const fill = new THREE.Mesh(new THREE.ShapeGeometry(shape), MATERIALS.fill(THREE, { color: colour, opacity: 0.3, depthTest: false }));
+    fill.position.z = z;
+    fill.renderOrder = 11;
+    group.add(fill);
+  }
+  const [x, y, height] = base.stance.com;
+  const drop = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(x, y, height), new THREE.Vector3(x, y, z)]),
+    MATERIALS.dashed(THREE, { color: colour, depthTest: false, dashSize: robot.size / 60, gapSize: robot.size / 90 }));
+  drop.computeLineDistances();
+  drop.renderOrder = 12;
+  const marker = new THREE.Group();
+  marker.userData.marker = true;
+  const halo = new THREE.Mesh(new THREE.SphereGeometry(1.45, 16, 12), MATERIALS.marker(THREE, { color: "#ffffff" }));
+  const dot = new THREE.Mesh(new THREE.SphereGeometry(1, 16, 12), MATERIALS.marker(THREE, { color: colour }));
+  halo.renderOrder = 12;
+  dot.renderOrder = 13;
+  marker.add(halo, dot);
+  marker.position.set(x, y, z);
+  group.add(drop, marker);
+  robot.supportPoints = [...corners, marker.position.clone()];
+}
+
+function build(data, statics) {
   const { THREE, scene } = view;
   if (current) dispose(current);
   const root = new THREE.Group();
@@ -352,6 +410,7 @@ function build(data) {
   floor.rotation.x = Math.PI / 2;
   floor.position.set(...robot.box.getCenter(new THREE.Vector3()).toArray().slice(0, 2), robot.box.min.z);
   root.add(floor);
+  addSupport(robot, baseOf(statics));
   scene.add(root);
   current = robot;
   robot.points = outlinePoints(THREE, robot);
@@ -391,6 +450,7 @@ function framedPoints(THREE) {
   // (a box 30x its link's, a tensor 1000x too large, shows whole around the robot; one of a
   // tensor in g mm^2, 10^6x, would shrink the robot to a dot and is left to reach past)
   const points = current.points.slice();
+  if (show.support) points.push(...current.supportPoints);
   if (show.overlays === "selected") return points;
   const limit = current.size * 4;
   for (const entry of current.links.values()) {
@@ -564,8 +624,18 @@ function pickOnClick(canvas) {
 
 // -- the answer -------------------------------------------------------------------------------
 
+function offerSupport(base) {
+  // the "support polygon" box is offered for a mobile base whose polygon is known
+  const box = document.querySelector("[data-show='support']");
+  const label = $("support-toggle");
+  if (label.dataset.title === undefined) label.dataset.title = label.title;
+  box.disabled = !base;
+  label.title = base ? label.dataset.title : "No support polygon: not a mobile base, or its stance is not judged (see the statics)";
+}
+
 async function results(detail) {
   const data = detail && detail.scene;
+  offerSupport(baseOf(detail && detail.statics));
   const notes = $("view-notes");
   notes.hidden = true;
   if (!data || !Array.isArray(data.links) || !data.links.length) {
@@ -589,7 +659,7 @@ async function results(detail) {
     await view.warm;
     mark("ready");
     resize(); // the results just appeared: the canvas takes its size before the first frame
-    build(data);
+    build(data, detail.statics);
     mark("built");
   } catch (problem) {
     state("error", `The 3D view could not be drawn (${problem && problem.message ? problem.message : problem}).`);
@@ -604,6 +674,7 @@ async function results(detail) {
   state("ready");
   const box = $("view");
   box.dataset.links = String(data.links.length);
+  box.dataset.support = current.supportPoints.length ? baseOf(detail.statics).kind : "none";
   box.dataset.triangles = String((data.meshes || []).reduce((n, m) => n + (m.triangles || 0), 0));
   mark("shown");
   box.dataset.phases = phases.join(", ");
@@ -626,6 +697,12 @@ window.urdflintView = Object.freeze({
     if (!target) return null;
     return project(new view.THREE.Box3().setFromObject(target).getCenter(new view.THREE.Vector3()));
   },
+  support() {
+    // the support polygon's corners and the centre of mass's ground point, on the screen
+    if (!current || !current.supportPoints.length) return null;
+    const points = current.supportPoints.map(project);
+    return { corners: points.slice(0, -1), com: points[points.length - 1], shown: show.support };
+  },
 });
 
 document.addEventListener("urdflint:results", (event) => { results(event.detail); });
@@ -634,7 +711,7 @@ document.addEventListener("urdflint:select", (event) => select(event.detail.link
 document.querySelectorAll("[data-show]").forEach((box) => box.addEventListener("change", () => {
   setShown(box.dataset.show, box.type === "checkbox" ? box.checked : box.value);
   // a camera the reader has not moved frames what is shown now
-  if (current && current.framed && ["overlays", "com", "inertia"].includes(box.dataset.show)) frame();
+  if (current && current.framed && ["overlays", "com", "inertia", "support"].includes(box.dataset.show)) frame();
 }));
 $("view-reset").addEventListener("click", () => {
   if (!current) return;

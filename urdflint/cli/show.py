@@ -28,8 +28,8 @@ def add_options(parser: argparse.ArgumentParser) -> None:
         "--show-settings",
         action="store_true",
         help="print the settings each file would be checked with (configuration file, "
-        "targets and why, rules, xacro arguments, the folder of each package it uses and "
-        "why) and exit without linting; --format json for JSON",
+        "targets and why, rules, xacro arguments, statics and stability, the folder of each "
+        "package it uses and why) and exit without linting; --format json for JSON",
     )
     group.add_argument(
         "--add-noqa",

@@ -4,11 +4,12 @@ Per file: the configuration file that applies (or none, or ``--isolated``), the 
 how they were chosen (given with ``--target``, configured, inferred from evidence in the
 model and its package, or assumed), the rules (select, ignore, the per-file ignores that
 match, severities, options), fail-on, the xacro arguments, the package paths, the SRDF,
-profile, engines and expectations, the analysis cache, and each package name the file uses
-(``package://``, ``$(find)``) with the folder it resolves to and why
-(:mod:`urdflint.cli.show_packages`). Each value says where it came from: ``command line``,
-the configuration file, or ``default``. The file is read (xacro expanded) for the targets
-and packages, but no rule runs. ``--format json`` writes the same as JSON.
+profile, engines and expectations, the statics (payload, gravity: D001, D002, ``info
+--statics``) and stability settings (contact links and tolerance, samples: D003), the cache,
+and each package name the file uses (``package://``, ``$(find)``) with the folder it resolves
+to and why (:mod:`urdflint.cli.show_packages`). Each value says where it came from: ``command
+line``, the configuration file, or ``default``. The file is read (xacro expanded) for the
+targets and packages, but no rule runs. ``--format json`` writes the same as JSON.
 """
 
 from __future__ import annotations
@@ -23,8 +24,10 @@ from typing import IO, Any
 
 from urdflint.cli import show_packages
 from urdflint.cli.common import UsageError
-from urdflint.engine import config, linter, registry
+from urdflint.engine import config, linter, registry, statics_settings
+from urdflint.engine.stability_config import StabilitySettings
 from urdflint.model.document import Document
+from urdflint.model.values import fmt
 from urdflint.sources import package_xml
 
 DEFAULT = "default"
@@ -63,6 +66,8 @@ def describe(args: argparse.Namespace, name: str, context: Any, finder: Any) -> 
         "profile": _value("profile", settings.profile, None, settings, finder),
         "confirm": _value("confirm", list(settings.confirm), [], settings, finder),
         "expect": _expect(settings, finder),
+        "statics": _statics(settings, finder),
+        "stability": _stability(settings, finder),
         "cache": _cache(args, context),
         "packages": _packages(doc, context),
         "problem": problem,
@@ -88,9 +93,12 @@ def _text(value: Any) -> str | None:
     return None if value is None else str(value)
 
 
-def _from(key: str, value: Any, default: Any, settings: Any, finder: Any) -> str:
+def _from(
+    key: str, value: Any, default: Any, settings: Any, finder: Any, given: bool = False
+) -> str:
     """Where a value came from: the command line, the configuration file, or the default."""
-    if key in finder.overrides or (key == "expect" and (finder.expect_mass or finder.expect_com)):
+    given = given or key in finder.overrides
+    if given or (key == "expect" and (finder.expect_mass or finder.expect_com)):
         return COMMAND_LINE
     if value != default and settings.source is not None:
         return _shown(settings.source)
@@ -172,6 +180,26 @@ def _expect(settings: Any, finder: Any) -> dict[str, Any]:
     return {"value": value, "from": _from("expect", value, None, settings, finder)}
 
 
+def _statics(settings: Any, finder: Any) -> dict[str, Any]:
+    """The payload and the gravity (``--payload``/``--gravity`` win over the configuration)."""
+    found, (given_payload, given_gravity) = settings.statics, finder.statics
+    payload = {"kg": found.payload, "link": found.payload_link}  # link None: the tool
+    gravity = list(found.gravity)
+    return {
+        "payload": {"value": payload, "from": _from("payload", payload, {"kg": 0, "link": None},
+                                                    settings, finder, given_payload is not None)},
+        "gravity": {"value": gravity, "from": _from("gravity", gravity, [*statics_settings.EARTH],
+                                                    settings, finder, given_gravity is not None)},
+    }  # fmt: skip
+
+
+def _stability(settings: Any, finder: Any) -> dict[str, Any]:
+    """``[tool.urdflint.stability]``: contact links (empty: found), tolerance (m), samples."""
+    found, default = settings.stability, StabilitySettings()
+    return {k.replace("_", "-"): _value(k, getattr(found, k), getattr(default, k), settings,
+            finder) for k in ("contact_links", "contact_tolerance", "samples")}  # fmt: skip
+
+
 def _cache(args: argparse.Namespace, context: Any) -> dict[str, Any]:
     cache = context.cache
     if cache is not None:
@@ -245,6 +273,8 @@ def _rows(one: dict[str, Any]) -> list[tuple[str, str]]:
         ("profile", _valued(one["profile"], "none: the N rules do not run")),
         ("confirm", _valued(one["confirm"], "none: no engine loads the model")),
         ("expect", _expect_text(one["expect"])),
+        ("statics", _statics_text(one["statics"])),
+        ("stability", _stability_text(one["stability"])),
         ("cache", _cache_text(one["cache"])),
         ("packages", _packages_text(one["packages"])),
     ]
@@ -327,6 +357,22 @@ def _expect_text(found: dict[str, Any]) -> str:
     if value["q"]:
         parts.append("q " + " ".join(f"{k}={v:g}" for k, v in value["q"].items()))
     return f"{'; '.join(parts)} ({found['from']})"
+
+
+def _statics_text(found: dict[str, Any]) -> str:
+    kg, link = found["payload"]["value"].values()
+    held = replace(statics_settings.DEFAULT, payload=kg, payload_link=link).describe()
+    vector = ", ".join(fmt(g) for g in found["gravity"]["value"])
+    return (f"payload: {held if kg else 'none'} ({found['payload']['from']})\n"
+            f"gravity: {vector} m/s², root link frame ({found['gravity']['from']})")  # fmt: skip
+
+
+def _stability_text(found: dict[str, Any]) -> str:
+    links, tolerance, samples = found.values()
+    named = ", ".join(links["value"]) or "found by the heuristic"
+    return (f"contact-links: {named} ({links['from']})\n"
+            f"contact-tolerance: {fmt(tolerance['value'])} m ({tolerance['from']})\n"
+            f"samples: {samples['value']} ({samples['from']})")  # fmt: skip
 
 
 def _xacro_text(found: dict[str, str] | None) -> str:

@@ -44,12 +44,18 @@ class StaticsSettings:
         return f"{fmt(self.payload)} kg at {where}"
 
 
+MAX_PAYLOAD = 1e6  # kg: far beyond any robot, and the torques stay finite
+MAX_GRAVITY = 1e3  # m/s²: a hundred g
+
+
 def payload(text: str) -> tuple[float, str | None]:
     """``2`` / ``2@tool0`` / ``0.5 @ wrist_3_link`` -> (kg, link or ``None``)."""
     mass_text, at, link = str(text).partition("@")
     mass = parse_number(mass_text.strip())
     if mass is None or not math.isfinite(mass) or mass < 0:
         raise ValueError(f"payload {text!r}: expected KG[@LINK] with KG a mass >= 0")
+    if mass > MAX_PAYLOAD:
+        raise ValueError(f"payload {text!r}: more than {MAX_PAYLOAD:g} kg")
     link = link.strip()
     if at and not link:
         raise ValueError(f"payload {text!r}: no link after @")
@@ -62,7 +68,10 @@ def gravity(value: Any) -> Vec:
     numbers = [_number(p) for p in parts]
     if len(numbers) != 3 or any(n is None for n in numbers):
         raise ValueError(f"gravity {value!r}: expected X,Y,Z in m/s² (e.g. 0,0,-9.81)")
-    return (float(numbers[0]), float(numbers[1]), float(numbers[2]))  # type: ignore[arg-type]
+    found = (float(numbers[0]), float(numbers[1]), float(numbers[2]))  # type: ignore[arg-type]
+    if math.hypot(*found) > MAX_GRAVITY:
+        raise ValueError(f"gravity {value!r}: stronger than {MAX_GRAVITY:g} m/s²")
+    return found
 
 
 def _number(value: Any) -> float | None:
