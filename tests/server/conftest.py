@@ -15,8 +15,10 @@ import socket
 import subprocess
 import sys
 import time
+import warnings
 from collections.abc import Iterator, Mapping
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -113,6 +115,23 @@ def _wait(proc: subprocess.Popen[bytes], base: str, path: str, log: Path) -> Non
                 return
         time.sleep(0.1)
     raise RuntimeError(f"urdflint serve did not answer {path} in time:\n{_log_tail(log)}")
+
+
+@pytest.fixture(scope="module")
+def client(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
+    """The app in this process (one worker, request folders in a temporary folder), for a
+    module that does not define its own ``client``."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        from fastapi.testclient import TestClient
+    from urdflint.server.app import create_app
+    from urdflint.server.limits import Limits
+
+    folders = tmp_path_factory.mktemp("requests")
+    with TestClient(
+        create_app(Limits(jobs=1, tmpdir=str(folders))), raise_server_exceptions=False
+    ) as test_client:
+        yield test_client
 
 
 @pytest.fixture(scope="session")

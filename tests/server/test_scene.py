@@ -7,7 +7,6 @@ from __future__ import annotations
 import base64
 import math
 import struct
-import warnings
 from pathlib import Path
 from typing import Any
 
@@ -242,21 +241,6 @@ def test_the_budget_is_shared_fairly() -> None:
 
 
 # -- the API ----------------------------------------------------------------------------------
-
-
-@pytest.fixture(scope="module")
-def client(tmp_path_factory: pytest.TempPathFactory) -> Any:
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        from fastapi.testclient import TestClient
-    from urdflint.server.app import create_app
-    from urdflint.server.limits import Limits
-
-    folders = tmp_path_factory.mktemp("requests")
-    with TestClient(
-        create_app(Limits(jobs=1, tmpdir=str(folders))), raise_server_exceptions=False
-    ) as test_client:
-        yield test_client
 
 
 def test_scene_option_adds_the_scene(client: Any) -> None:

@@ -10,7 +10,6 @@ import logging
 import math
 import subprocess
 import sys
-import warnings
 import zipfile
 from pathlib import Path
 from types import SimpleNamespace
@@ -26,21 +25,6 @@ pytest.importorskip("pinocchio")
 ARM = FIXTURES / "rules" / "D001" / "bad.urdf"  # the shoulder cannot hold the arm (D001)
 BASE = FIXTURES / "rules" / "D003" / "good.urdf"  # a mobile base that stands
 TIAGO = CORPUS / "tiago" / "model.urdf"
-
-
-@pytest.fixture(scope="module")
-def client(tmp_path_factory: pytest.TempPathFactory) -> Any:
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        from fastapi.testclient import TestClient
-    from urdflint.server.app import create_app
-    from urdflint.server.limits import Limits
-
-    folders = tmp_path_factory.mktemp("requests")
-    with TestClient(
-        create_app(Limits(jobs=1, tmpdir=str(folders))), raise_server_exceptions=False
-    ) as test_client:
-        yield test_client
 
 
 def info(path: Path) -> dict[str, Any]:
