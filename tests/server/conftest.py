@@ -134,6 +134,25 @@ def client(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
         yield test_client
 
 
+@pytest.fixture(scope="module")
+def base_url(live_server: str) -> str:
+    """The session's ``urdflint serve`` process, for the browser tests."""
+    return live_server
+
+
+@pytest.fixture(scope="module")
+def driver(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
+    """Headless Chromium for one module (tests/server/browsing.py; the module skips
+    without Chromium)."""
+    from tests.server.browsing import new_driver
+
+    browser = new_driver(tmp_path_factory.mktemp("chromium-profile"))
+    try:
+        yield browser
+    finally:
+        browser.quit()
+
+
 @pytest.fixture(scope="session")
 def live_server_tmpdir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """Where the session's live server makes (and must remove) its per-request folders."""

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import importlib.util
 import time
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -30,7 +29,6 @@ from tests.server.browsing import (
     CHROMEDRIVER,
     CHROMIUM,
     check,
-    new_driver,
     rows,
     rules,
     screenshot,
@@ -46,21 +44,6 @@ pytestmark = [
 ]
 
 BROKEN = FIXTURES / "models" / "broken_arm.urdf"
-
-
-@pytest.fixture(scope="module")
-def base_url(live_server: str) -> str:
-    """The session's ``urdflint serve`` process (tests/server/conftest.py)."""
-    return live_server
-
-
-@pytest.fixture(scope="module")
-def driver(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
-    browser = new_driver(tmp_path_factory.mktemp("chromium-profile"))
-    try:
-        yield browser
-    finally:
-        browser.quit()
 
 
 # -- tests ------------------------------------------------------------------------------------

@@ -20,7 +20,6 @@ import io
 import os
 import re
 import time
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -43,7 +42,6 @@ from tests.server.browsing import (  # noqa: E402
     CHROMIUM,
     check,
     mesh_zip,
-    new_driver,
     rows,
     rules,
 )
@@ -63,20 +61,6 @@ REAL = ("pr2", "tiago")  # robots with meshes and a package_map.json in the corp
 BACKGROUND = (248, 250, 252)  # the view's clear colour, #f8fafc
 FLOOR = ((0xC9, 0xCE, 0xD6), (0xE4, 0xE7, 0xEC))  # the floor grid's two line colours
 OVERLAYS = ("com", "inertia", "axes", "findings")  # the overlay toggles
-
-
-@pytest.fixture(scope="module")
-def base_url(live_server: str) -> str:
-    return live_server
-
-
-@pytest.fixture(scope="module")
-def driver(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
-    browser = new_driver(tmp_path_factory.mktemp("chromium-profile"))
-    try:
-        yield browser
-    finally:
-        browser.quit()
 
 
 # -- helpers ----------------------------------------------------------------------------------

@@ -15,7 +15,6 @@ colours around points the page projects (``window.urdflintView.support()``). Scr
 from __future__ import annotations
 
 import time
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -33,7 +32,7 @@ pytest.importorskip("PIL.Image")
 from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.support.ui import WebDriverWait  # noqa: E402
 
-from tests.server.browsing import CHROMEDRIVER, CHROMIUM, mesh_zip, new_driver  # noqa: E402
+from tests.server.browsing import CHROMEDRIVER, CHROMIUM, mesh_zip  # noqa: E402
 from tests.server.test_browser_scene import (  # noqa: E402
     around,
     drawn,
@@ -55,20 +54,6 @@ ARM = FIXTURES / "rules" / "D001" / "bad.urdf"  # a fixed arm whose shoulder can
 FALLS = FIXTURES / "rules" / "D003" / "bad.urdf"  # a base whose centre of mass is outside
 TIAGO = CORPUS / "tiago"
 GREEN, RED = (7, 148, 85), (217, 45, 32)  # the page's pass and error colours
-
-
-@pytest.fixture(scope="module")
-def base_url(live_server: str) -> str:
-    return live_server
-
-
-@pytest.fixture(scope="module")
-def driver(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Any]:
-    browser = new_driver(tmp_path_factory.mktemp("chromium-profile"))
-    try:
-        yield browser
-    finally:
-        browser.quit()
 
 
 def joints(driver: Any) -> list[dict[str, Any]]:
