@@ -140,8 +140,12 @@ def test_json_carries_the_fix(tmp_path: Path, capsys) -> None:
     fix = finding["autofix"]
     assert fix["applicability"] == "safe" and fix["description"].startswith("normalise")
     (edit,) = fix["edits"]
-    assert set(edit) == {"path", "start", "end", "content"}
+    assert set(edit) == {"path", "start", "end", "content", "offsets"}
     assert edit["start"]["line"] == finding["line"]
+    start, end = edit["offsets"]  # the bytes of the file that "content" replaces
+    data = path.read_bytes()
+    assert len(data[:start].decode().splitlines()) == edit["start"]["line"]
+    assert 0 <= start <= end <= len(data)
 
 
 def test_fix_refuses_standard_input(capsys) -> None:

@@ -114,9 +114,12 @@ class Recorder:
         self.inherited: dict[tuple[str, str], Dep] = {}
         self.ignore = ignore
         self.started = time.time()
+        # what the import system opens and lists while a lazy import runs: code, not input
+        self.imports = frozenset(os.path.abspath(p) for p in sys.path if p)
 
     def keep(self, path: str) -> bool:
-        return not path.startswith(self.ignore) and not path.endswith(CODE_SUFFIXES)
+        inside = (path + os.sep).startswith(self.ignore)  # a folder itself, or below one
+        return not inside and not path.endswith(CODE_SUFFIXES) and path not in self.imports
 
     def inherit(self, deps: tuple[Dep, ...]) -> None:
         """The inputs of a cached computation that ran (or was replayed) inside this one."""

@@ -142,12 +142,17 @@ def _library(name: str) -> str | None:
 @functools.lru_cache(maxsize=1)
 def _site_listings() -> tuple[tuple[str, tuple[str, ...]], ...]:
     found = []
-    for folder in dict.fromkeys(p for p in sys.path if p and "-packages" in p):
+    # site-packages folders only: not what a library adds below one (Ray's thirdparty_files)
+    for folder in dict.fromkeys(p for p in sys.path if p and _site_folder(p)):
         try:
             found.append((folder, tuple(os.listdir(folder))))
         except OSError:
             continue
     return tuple(found)
+
+
+def _site_folder(path: str) -> bool:
+    return os.path.basename(os.path.normpath(path)) in ("site-packages", "dist-packages")
 
 
 def settings_key(settings: Any) -> Any:

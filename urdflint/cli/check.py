@@ -47,6 +47,7 @@ class Run:
     matrix: list[dict[str, Any]] = field(default_factory=list)
     targets: dict[str, Any] = field(default_factory=dict)  # path -> its targets, how chosen
     baselined: int = 0  # findings the baseline accepted (or --write-baseline recorded)
+    counts: dict[str, int] | None = None  # a lean dataset run: findings counted, not kept
 
 
 def run(args: argparse.Namespace) -> int:
@@ -72,20 +73,26 @@ def run(args: argparse.Namespace) -> int:
     if args.emit_expanded and not (len(files) == 1 and files[0].lower().endswith(".xacro")):
         raise UsageError("--emit-expanded needs exactly one xacro file")
     reports = _reports(args)
+    from urdflint.cli import dataset
+
+    plan = dataset.plan(args, reports)  # --format jsonl, --resume: records as files finish
 
     def lint() -> Run:
         found = Run(errors=list(errors))
-        _lint_files(args, robots, finder, found, context)
+        _lint_files(args, robots, finder, found, context, plan)
         fragments.add(pieces, finder, found, context)
         return found
 
     try:
         outcome, done = fix.drive(args, files, lint)
     finally:
+        plan.close()
         if context.cache is not None:
             context.cache.finish()
     if done is not None:
         return done
+    if outcome.counts is not None:  # every output is records, written file by file
+        return _lean_end(args, files, outcome)
     findings = _finish(args, finder, outcome, accepted)
     fix.report(args, findings)
     for message in outcome.errors:
@@ -111,14 +118,37 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _lint_files(
-    args: argparse.Namespace, files: list[str], finder: SettingsFinder, outcome: Run, context: Any
+    args: argparse.Namespace,
+    files: list[str],
+    finder: SettingsFinder,
+    outcome: Run,
+    context: Any,
+    plan: Any,
 ) -> None:
-    from urdflint.cli import parallel
+    from urdflint.cli import dataset, parallel
 
     tasks = [_task(args, name, finder) for name in files]
-    flags = parallel.Flags(args.matrix, args.emit_expanded)
-    jobs = parallel.jobs_for(args.jobs, len(tasks))
-    for task, done in zip(tasks, parallel.run(tasks, context, flags, jobs), strict=True):
+    if not plan.active and getattr(args, "executor", "local") == "local":
+        flags = parallel.Flags(args.matrix, args.emit_expanded)
+        jobs = parallel.jobs_for(args.jobs, len(tasks))
+        _collect(args, tasks, parallel.run(tasks, context, flags, jobs), outcome)
+        return
+    # records (every target's matrix row, what each file read), or Ray: as files finish
+    flags = parallel.Flags(args.matrix, args.emit_expanded, record=plan.active)
+    done: list[Any] = [None] * len(tasks)
+    counts = {"error": 0, "warning": 0, "info": 0}
+    for index, result in dataset.execute(args, tasks, context, flags, plan):
+        done[index] = dataset.lean(result, counts) if plan.lean else result
+    if plan.lean:
+        outcome.counts = counts
+    _collect(args, tasks, done, outcome)
+
+
+def _collect(args: argparse.Namespace, tasks: list[Any], outcomes: Any, outcome: Run) -> None:
+    """Fold each file's outcome, in input order, into the run."""
+    for task, done in zip(tasks, outcomes, strict=True):
+        if not args.matrix:
+            done.matrix = []  # computed for the records only
         if done.error is not None:
             outcome.errors.append(done.error)
             continue
@@ -183,6 +213,24 @@ def _exit_code(
         return EXIT_ERROR
     threshold = FAIL_LEVEL.get(outcome.fail_on)
     if threshold is not None and any(f.severity >= threshold for f in findings):
+        return EXIT_FINDINGS
+    return EXIT_OK
+
+
+def _lean_end(args: argparse.Namespace, files: list[str], outcome: Run) -> int:
+    """The end of a run whose every output is records: a summary line, the exit code."""
+    for message in outcome.errors:
+        print(f"urdflint: error: {message}", file=sys.stderr)
+    counts = outcome.counts or {}
+    parts = [
+        f"{counts[s]} {s}{'' if counts[s] == 1 else 's'}" for s in ("error", "warning", "info")
+    ]
+    where = f" (records in {args.output})" if args.output else ""
+    print(f"urdflint: {', '.join(parts)} in {len(outcome.checked)} file(s){where}", file=sys.stderr)
+    if outcome.errors or outcome.crashed or not files:
+        return EXIT_ERROR
+    threshold = FAIL_LEVEL.get(outcome.fail_on)
+    if threshold is not None and any(counts[str(s)] for s in FAIL_LEVEL.values() if s >= threshold):
         return EXIT_FINDINGS
     return EXIT_OK
 
@@ -259,8 +307,8 @@ def _reports(args: argparse.Namespace) -> list[tuple[str, Path]]:
         name, found, target = value.partition(":")
         if not found or not target or not name:
             raise UsageError(f"--report {value!r}: expected FORMAT:PATH, e.g. sarif:urdflint.sarif")
-        if name not in formatters.NAMES:
-            known = ", ".join(formatters.NAMES)
+        if name not in formatters.NAMES and name != "jsonl":
+            known = ", ".join((*formatters.NAMES, "jsonl"))
             raise UsageError(f"--report {value!r}: unknown format {name!r} (use {known})")
         path = _writable(Path(target), "--report")
         if path.resolve() in seen:
@@ -293,6 +341,8 @@ def _write_outputs(
     with the display options of ``main``; the --report files carry everything. With
     --statistics, the main output is the statistics table unless its format is json."""
     for index, (name, path) in enumerate(outputs):
+        if name == "jsonl":
+            continue  # records: written as each file finished (urdflint.cli.dataset)
         shown = main if index == 0 and main is not None else run
         if shown.statistics and name != "json":
             name = "text"

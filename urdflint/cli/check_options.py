@@ -48,8 +48,9 @@ def _options(check: argparse.ArgumentParser) -> None:
     check.add_argument(
         "--format",
         default="auto",
-        choices=("auto", *formatters.NAMES),
-        help="output format; auto = github when GITHUB_ACTIONS is set, else text",
+        choices=("auto", *formatters.NAMES, "jsonl"),
+        help="output format; auto = github when GITHUB_ACTIONS is set, else text; jsonl = "
+        "one record per file, written as each file finishes",
     )
     check.add_argument(
         "--select",
@@ -80,6 +81,7 @@ def _options(check: argparse.ArgumentParser) -> None:
     cache_options(check)
     fix.add_options(check)
     _jobs_option(check)
+    _dataset_options(check)
     _show_packages_option(check)
 
 
@@ -114,6 +116,30 @@ def _jobs_option(check: argparse.ArgumentParser) -> None:
         metavar="N",
         help="check files in N processes (default: one per CPU for 8 files or more, else 1); "
         "the output is the same as with --jobs 1",
+    )
+
+
+def _dataset_options(check: argparse.ArgumentParser) -> None:
+    check.add_argument(
+        "--executor",
+        choices=("local", "ray"),
+        default="local",
+        help="where files are checked: local (--jobs processes here) or ray (tasks on a Ray "
+        "cluster, each file and each --confirm engine its own; needs the cluster extra)",
+    )
+    check.add_argument(
+        "--ray-address",
+        metavar="ADDRESS",
+        default=None,
+        help="the Ray cluster --executor ray joins (host:port or ray://host:port); default: "
+        "$RAY_ADDRESS, else a Ray running here, else a new local one",
+    )
+    check.add_argument(
+        "--resume",
+        metavar="FILE",
+        default=None,
+        help="records of an earlier run (--format jsonl): files whose content, settings and "
+        "inputs are unchanged are not checked again; new records are appended to FILE",
     )
 
 
@@ -183,7 +209,8 @@ def _more_options(check: argparse.ArgumentParser) -> None:
         action="append",
         default=[],
         metavar="FORMAT:PATH",
-        help="also write FORMAT (" + ", ".join(formatters.NAMES) + ") to PATH (repeatable), "
+        help="also write FORMAT (" + ", ".join((*formatters.NAMES, "jsonl")) + ") to PATH "
+        "(repeatable), "
         "e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
     )
     gate_options(check)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 import sys
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import IO, Any
@@ -35,6 +35,7 @@ class Flags:
 
     matrix: bool = False
     emit_expanded: Path | None = None
+    record: bool = False  # dataset records: each file's digest and inputs too
 
 
 @dataclass
@@ -50,6 +51,11 @@ class Outcome:
     matrix: list[dict[str, Any]] = field(default_factory=list)
     error: str | None = None
     targets: dict[str, Any] | None = None  # the targets the findings are for, and how chosen
+    links: int | None = None  # the model's size (None: no model was read)
+    joints: int | None = None
+    engines: tuple[str, ...] = ()  # the --confirm engines
+    inputs: list[Any] | None = None  # Flags.record: what the check read ([kind, name, value])
+    digest: str | None = None  # Flags.record: the file's content digest
 
 
 def cpu_count() -> int:
@@ -138,6 +144,10 @@ def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         chosen = result.targets.names if result.targets else task.settings.targets
         found = matrix.every_target(result.findings, replace(task.settings, targets=chosen), relint)
         rows = [{"path": task.shown, **row} for row in found]
+    elif flags.record and doc is not None and doc.root is not None:  # the selected targets'
+        chosen = result.targets.names if result.targets else task.settings.targets
+        found = matrix.rows(result.findings, chosen, task.settings.confirm)
+        rows = [{"path": task.shown, **row, "selected": True} for row in found]
     if flags.emit_expanded:
         _emit(flags.emit_expanded, doc)
     return Outcome(
@@ -149,6 +159,9 @@ def _lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
         report.model_summary(result),
         rows,
         targets=result.targets.to_dict() if result.targets and rows_possible(doc) else None,
+        links=len(doc.links) if rows_possible(doc) else None,
+        joints=len(doc.joints) if rows_possible(doc) else None,
+        engines=tuple(task.settings.confirm),
     )
 
 
@@ -166,30 +179,35 @@ def rows_possible(doc: Any) -> bool:
     return doc is not None and doc.root is not None
 
 
-_WORKER: tuple[Any, Flags] | None = None  # the run's context and flags, in each worker
+Work = Callable[[Task, Any, Flags], Outcome]
+_WORKER: tuple[Any, Flags, Work] | None = None  # the run's context, flags, work: each worker
 
 
-def _start(context: Any, flags: Flags) -> None:
+def _start(context: Any, flags: Flags, work: Work) -> None:
     global _WORKER
-    _WORKER = (context, flags)
+    _WORKER = (context, flags, work)
 
 
 def _work(task: Task) -> Outcome:
     assert _WORKER is not None
-    return lint_one(task, *_WORKER)
+    context, flags, work = _WORKER
+    return work(task, context, flags)
 
 
-def run(tasks: Sequence[Task], context: Any, flags: Flags, jobs: int) -> Iterator[Outcome]:
-    """Each task's outcome, in the order of ``tasks``, from ``jobs`` processes."""
+def run(
+    tasks: Sequence[Task], context: Any, flags: Flags, jobs: int, work: Work = lint_one
+) -> Iterator[Outcome]:
+    """Each task's ``work`` (:func:`lint_one`, or a variant that also records what it
+    read), in the order of ``tasks``, from ``jobs`` processes."""
     progress = Progress(len(tasks), sys.stderr)
     try:
         if jobs <= 1 or len(tasks) <= 1:
             for task in tasks:
-                yield lint_one(task, context, flags)
+                yield work(task, context, flags)
                 progress.step()
             return
-        if getattr(context, "cache", None) is None:
-            yield from _pooled(tasks, context, flags, jobs, progress)
+        if getattr(context, "cache", None) is None or work is not lint_one:
+            yield from _pooled(tasks, context, flags, jobs, progress, work)
             return
         # what the cache replays needs no pool: only the other files go to the processes
         done = _replayed(tasks, context, flags)
@@ -198,7 +216,7 @@ def run(tasks: Sequence[Task], context: Any, flags: Flags, jobs: int) -> Iterato
         fresh = iter(
             (lint_one(t, context, flags) for t in todo)
             if jobs <= 1
-            else _pooled(todo, context, flags, jobs, progress)
+            else _pooled(todo, context, flags, jobs, progress, work)
         )
         for outcome in done:
             if outcome is None:
@@ -213,7 +231,7 @@ def run(tasks: Sequence[Task], context: Any, flags: Flags, jobs: int) -> Iterato
 
 
 def _pooled(
-    tasks: Sequence[Task], context: Any, flags: Flags, jobs: int, progress: Progress
+    tasks: Sequence[Task], context: Any, flags: Flags, jobs: int, progress: Progress, work: Work
 ) -> Iterator[Outcome]:
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
@@ -226,7 +244,7 @@ def _pooled(
         jobs,
         mp_context=multiprocessing.get_context(method),
         initializer=_start,
-        initargs=(context, flags),
+        initargs=(context, flags, work),
     ) as pool:
         for outcome in pool.map(_work, tasks, chunksize=1):
             yield outcome
@@ -254,7 +272,8 @@ def _preload(tasks: Sequence[Task]) -> None:
 
 
 class Progress:
-    """``checked 37/200 files`` on a terminal's stderr, once a run has lasted a second."""
+    """``checked 37/200 files, 1:05 left`` on a terminal's stderr, once a run has lasted a
+    second."""
 
     DELAY = 1.0
 
@@ -274,9 +293,25 @@ class Progress:
         width = 24
         filled = width * self.done // self.total
         bar = "#" * filled + "." * (width - filled)
-        self.stream.write(f"\rurdflint: [{bar}] checked {self.done}/{self.total} files")
+        self.stream.write(
+            f"\rurdflint: [{bar}] checked {self.done}/{self.total} files{self.eta()}\x1b[K"
+        )
         self.stream.flush()
         self.shown = True
+
+    def eta(self) -> str:
+        """``, 2:05 left`` from the pace so far (nothing until a few files are done)."""
+        left = self.total - self.done
+        if self.done < 3 or left <= 0:
+            return ""
+        seconds = int((time.monotonic() - self.started) / self.done * left + 0.5)
+        hours, rest = divmod(seconds, 3600)
+        clock = (
+            f"{hours}:{rest // 60:02d}:{rest % 60:02d}"
+            if hours
+            else f"{rest // 60}:{rest % 60:02d}"
+        )
+        return f", {clock} left"
 
     def close(self) -> None:
         if self.shown:

@@ -19,15 +19,18 @@ to the E rules for a document, so that linting it with ``confirm`` runs no engin
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import copy
 import importlib.util
 import signal
 import sys
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any
 from weakref import WeakKeyDictionary
 
 from lxml import etree
@@ -37,8 +40,8 @@ from urdflint.engines import batch, output, sdformat
 from urdflint.engines.output import Message
 from urdflint.model.document import Document
 
-__all__ = ["ENGINES", "Outcome", "confirm", "confirm_batch", "confirm_many", "installed",
-           "remember", "write_model"]  # fmt: skip
+__all__ = ["ENGINES", "Outcome", "answered", "confirm", "confirm_batch", "confirm_many",
+           "died", "installed", "prepared", "probe", "remember", "write_model"]  # fmt: skip
 MODULES = {"mujoco": "mujoco", "pybullet": "pybullet", "drake": "pydrake", "pinocchio": "pinocchio"}
 NATIVE = ("sdformat",)  # a compiled probe (:mod:`urdflint.engines.sdformat`), not Python
 TIMEOUT = 60.0  # seconds per engine
@@ -73,6 +76,9 @@ class Outcome:
 
 
 _REMEMBERED: WeakKeyDictionary[Document, list[Outcome]] = WeakKeyDictionary()  # remember()
+_ANSWERS: contextvars.ContextVar[dict[str, Any] | None] = contextvars.ContextVar(
+    "urdflint_engine_answers", default=None
+)
 
 
 def installed(engine: str) -> bool:
@@ -92,9 +98,13 @@ def command(engine: str) -> batch.Command:
 
 def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -> list[Outcome]:
     """Load ``doc`` in each of ``engines`` (in parallel, one process each), but for the
-    outcomes :func:`remember`-ed for it."""
+    outcomes :func:`remember`-ed for it and the answers :func:`answered` gives."""
     wanted = [e for e in dict.fromkeys(engines) if e in ENGINES]
     known = {o.engine: o for o in _REMEMBERED.get(doc, ())}
+    for engine, answer in (_ANSWERS.get() or {}).items():
+        if engine in wanted and engine not in known:
+            found = answer if isinstance(answer, Outcome) else outcome(doc, engine, answer, timeout)
+            known[engine] = found
     missing = [e for e in wanted if e not in known]
     if missing:
         with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
@@ -103,6 +113,48 @@ def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -
                 found = pool.map(lambda e: run(doc, e, path, timeout), missing)
                 known.update(zip(missing, found, strict=True))
     return [known[e] for e in wanted]
+
+
+@contextlib.contextmanager
+def answered(answers: Mapping[str, Outcome | batch.Loaded]) -> Iterator[None]:
+    """While active, :func:`confirm` takes each engine's answer from ``answers`` (what its
+    probe said about this document, loaded elsewhere: ``--executor ray`` runs each
+    (file, engine) pair as its own task) instead of starting the engine."""
+    token = _ANSWERS.set(dict(answers))
+    try:
+        yield
+    finally:
+        _ANSWERS.reset(token)
+
+
+def prepared(doc: Document) -> tuple[str, str] | None:
+    """The model as :func:`write_model` writes it, as ``(file name, text)``; ``None`` when
+    the document is not a model the engines could load (unreadable, a macro library)."""
+    if not doc.ok or doc.library:
+        return None
+    with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
+        path = write_model(doc, Path(folder))
+        return path.name, path.read_text(encoding="utf-8")
+
+
+def probe(engine: str, name: str, text: str, timeout: float = TIMEOUT) -> Outcome | batch.Loaded:
+    """Load a prepared model in ``engine``'s probe process: what the probe said (turned into
+    an :class:`Outcome` against the document by :func:`confirm`), or the outcome of an
+    engine that cannot run here."""
+    unusable = _unusable(engine)
+    if unusable is not None:
+        return unusable
+    with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
+        path = Path(folder) / name
+        path.write_text(text, encoding="utf-8")
+        return _load(engine, [path], timeout, path.parent)[0]
+
+
+def died(answer: Outcome | batch.Loaded) -> bool:
+    """Whether the engine's process died or hung on the model (worth one more try)."""
+    if isinstance(answer, Outcome):
+        return False
+    return answer.hung or answer.status is not None or answer.report is None
 
 
 def confirm_batch(docs: Sequence[Document], engine: str, timeout: float = TIMEOUT) -> list[Outcome]:

@@ -107,6 +107,7 @@ class Edit:
             "start": {"line": self.line, "column": self.column},
             "end": {"line": self.end_line, "column": self.end_column},
             "content": self.text,
+            "offsets": [self.start, self.end],  # bytes of the file that ``content`` replaces
         }
         if self.create:
             data["create"] = True

@@ -104,10 +104,16 @@ class Finding:
                 {"macro": c.macro, "path": c.path, "line": c.line, "column": c.column}
                 for c in self.trace
             ),
-            "effects": {
-                target: {"consequence": e.consequence.key, "detail": e.detail}
-                for target, e in self.effects
-            },
+            "effects": {target: _effect(e) for target, e in self.effects},
             "engine": self.engine,
             "autofix": self.autofix.to_dict() if self.autofix is not None else None,
         }
+
+
+def _effect(effect: Effect) -> dict[str, object]:
+    """An effect's JSON: its consequence and detail, and its severity when the rule set one
+    other than the consequence's own."""
+    data: dict[str, object] = {"consequence": effect.consequence.key, "detail": effect.detail}
+    if effect.severity is not None:
+        data["severity"] = str(effect.severity)
+    return data

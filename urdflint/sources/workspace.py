@@ -152,7 +152,8 @@ class Packages(Mapping[str, Path]):
                 with deps.unrecorded():  # the index's own inputs are kept with the index
                     listed = cache.result("packages", (self.key,), self._discover)  # type: ignore[attr-defined]
             else:
-                listed = self._discover()
+                with deps.unrecorded():  # the "packages" input below stands for the walk
+                    listed = self._discover()
             every: dict[str, list[Path]] = {}
             for name, folder in listed:
                 every.setdefault(name, []).append(Path(folder))

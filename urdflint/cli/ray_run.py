@@ -1,0 +1,260 @@
+"""``--executor ray``: a run's files as tasks on a Ray cluster.
+
+- Without ``--confirm``, files go in chunks (up to :data:`CHUNK` files per task, small
+  enough that every CPU gets several tasks): a task costs about a millisecond of Ray's
+  time, a small URDF about as much to check.
+- With ``--confirm``, each file is three kinds of task: one reads it and writes the model
+  as the engines read it (:func:`urdflint.engines.runner.prepared`); one per engine loads
+  that model in the engine's own probe process (:func:`~urdflint.engines.runner.probe`);
+  the last lints the file with the engines' answers (the E rules read them, no engine is
+  started again). An engine's segfault costs one task: it is tried once more, then
+  reported (E005) as in a local run.
+- A task whose worker process dies is retried once by Ray. A chunk lost twice is split
+  into single files, each tried again; a file whose task is lost twice more is reported
+  as an error of the run (exit 2), never silently left out.
+
+Outcomes come back in the order tasks finish; the run puts them back in input order for
+the JSON, SARIF and text reports (the same as ``--jobs 1``), and writes records as they
+come. Workers run from the driver's working folder with its environment, so relative
+paths, ``$(env)`` and package paths mean the same on a worker: a cluster of several
+machines needs the files at the same paths on every node (a shared file system) and
+urdflint installed in the same version.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import sys
+from collections.abc import Iterator, Sequence
+from dataclasses import replace
+from typing import Any
+
+from urdflint.cli import parallel
+from urdflint.cli.common import UsageError
+
+CHUNK = 16  # most files per task without --confirm
+TASKS_PER_CPU = 8  # chunks are small enough for this many tasks per CPU
+IN_FLIGHT_PER_CPU = 4  # tasks submitted ahead of the finished ones, per CPU
+
+
+def connect(args: argparse.Namespace) -> Any:
+    """The ``ray`` module, connected: ``--ray-address``, ``$RAY_ADDRESS``, a Ray already
+    running on this machine, or a new local one with ``--jobs`` CPUs (default: all)."""
+    try:
+        import ray
+    except ImportError:
+        from urdflint.model.optional import install_command
+
+        raise UsageError(
+            f"--executor ray needs Ray, which is not installed: {install_command('cluster')}"
+        ) from None
+    if ray.is_initialized():
+        return ray
+    os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
+    quiet: dict[str, Any] = {"log_to_driver": False, "logging_level": logging.ERROR}
+    address = args.ray_address or os.environ.get("RAY_ADDRESS")
+    try:
+        if address:
+            ray.init(address=address, **quiet)
+            return ray
+        try:
+            ray.init(address="auto", **quiet)  # a Ray started here (ray start --head)
+        except (ConnectionError, RuntimeError):
+            cpus = args.jobs or parallel.cpu_count()
+            ray.init(num_cpus=cpus, include_dashboard=False, **quiet)
+    except Exception as exc:  # (Ray raises many kinds; one line for each)
+        where = address or "a local Ray"
+        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise UsageError(f"--executor ray: cannot connect to {where}: {reason}") from None
+    return ray
+
+
+def run(
+    tasks: Sequence[parallel.Task], context: Any, flags: parallel.Flags, args: argparse.Namespace
+) -> Iterator[tuple[int, parallel.Outcome]]:
+    """Each task's ``(index, outcome)``, in the order they finish."""
+    if not tasks:
+        return
+    ray = connect(args)
+    cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
+    from urdflint.cli import dataset
+
+    work = dataset.lint_recorded if flags.record else parallel.lint_one
+    shared = ray.put((replace(context, environ=dict(os.environ)), flags, work, os.getcwd()))
+    remote = _remotes(ray)
+    progress = parallel.Progress(len(tasks), sys.stderr)
+    try:
+        if any(task.settings.confirm for task in tasks):
+            yield from _confirmed(ray, remote, shared, tasks, cpus, progress)
+        else:
+            yield from _chunked(ray, remote, shared, tasks, cpus, progress)
+    finally:
+        progress.close()
+
+
+def _remotes(ray: Any) -> dict[str, Any]:
+    """The task functions (Ray retries each once when its worker dies)."""
+    return {
+        "lint": ray.remote(max_retries=1)(_lint_chunk),
+        "prepare": ray.remote(max_retries=1)(_prepare),
+        "probe": ray.remote(max_retries=1)(_probe),
+        "given": ray.remote(max_retries=1)(_lint_given),
+    }
+
+
+def _chunked(
+    ray: Any,
+    remote: dict[str, Any],
+    shared: Any,
+    tasks: Sequence[parallel.Task],
+    cpus: int,
+    progress: parallel.Progress,
+) -> Iterator[tuple[int, parallel.Outcome]]:
+    size = max(1, min(CHUNK, len(tasks) // (cpus * TASKS_PER_CPU)))
+    waiting = [list(range(i, min(i + size, len(tasks)))) for i in range(0, len(tasks), size)]
+    waiting.reverse()  # popped from the end: input order
+    running: dict[Any, tuple[list[int], int]] = {}  # ref -> (indexes, times lost)
+    limit = cpus * IN_FLIGHT_PER_CPU
+    while waiting or running:
+        while waiting and len(running) < limit:
+            chunk = waiting.pop()
+            ref = remote["lint"].remote(shared, [tasks[i] for i in chunk])
+            running[ref] = (chunk, 0)
+        (ref,), _ = ray.wait(list(running), num_returns=1)
+        chunk, _ = running.pop(ref)
+        try:
+            outcomes = ray.get(ref)
+        except Exception as exc:  # (the worker died, twice: Ray retried once)
+            if len(chunk) > 1:
+                waiting.extend([i] for i in reversed(chunk))  # find the file that kills it
+                continue
+            outcomes = [_lost(tasks[chunk[0]], exc)]
+        for index, outcome in zip(chunk, outcomes, strict=True):
+            progress.step()
+            yield index, outcome
+
+
+def _confirmed(
+    ray: Any,
+    remote: dict[str, Any],
+    shared: Any,
+    tasks: Sequence[parallel.Task],
+    cpus: int,
+    progress: parallel.Progress,
+) -> Iterator[tuple[int, parallel.Outcome]]:
+    """Prepare, probe per engine, lint with the answers: per file, as each step finishes."""
+    waiting = list(reversed(range(len(tasks))))
+    running: dict[Any, tuple[str, int, str | None, int]] = {}  # ref -> (step, file, engine, try)
+    answers: dict[int, dict[str, Any]] = {}
+    models: dict[int, Any] = {}
+    limit = cpus * IN_FLIGHT_PER_CPU
+    files_running = 0
+    while waiting or running:
+        while waiting and files_running < limit:
+            index = waiting.pop()
+            files_running += 1
+            if not tasks[index].settings.confirm:  # settings without engines: lint only
+                running[remote["given"].remote(shared, tasks[index], {})] = ("lint", index, None, 0)
+                continue
+            running[remote["prepare"].remote(shared, tasks[index])] = ("prepare", index, None, 0)
+        (ref,), _ = ray.wait(list(running), num_returns=1)
+        step, index, engine, tries = running.pop(ref)
+        task = tasks[index]
+        try:
+            value = ray.get(ref)
+        except Exception as exc:  # (the worker died twice)
+            value = exc
+        if step == "prepare":
+            if isinstance(value, Exception) or value is None:  # no model: lint it as it is
+                running[remote["given"].remote(shared, task, {})] = ("lint", index, None, 0)
+                continue
+            models[index] = ray.put(value)
+            answers[index] = {}
+            for name in task.settings.confirm:
+                ref = remote["probe"].remote(name, models[index])
+                running[ref] = ("probe", index, name, 0)
+        elif step == "probe":
+            assert engine is not None
+            from urdflint.engines import runner
+
+            if isinstance(value, Exception) or runner.died(value):
+                if tries == 0:  # a crash or a lost worker: once more
+                    ref = remote["probe"].remote(engine, models[index])
+                    running[ref] = ("probe", index, engine, 1)
+                    continue
+                if isinstance(value, Exception):
+                    value = runner.Outcome(engine, crash=f"its Ray worker was lost twice ({value})")
+            answers[index][engine] = value
+            if len(answers[index]) == len(task.settings.confirm):
+                models.pop(index, None)
+                ref = remote["given"].remote(shared, task, answers.pop(index))
+                running[ref] = ("lint", index, None, 0)
+        else:
+            files_running -= 1
+            outcome = _lost(task, value) if isinstance(value, Exception) else value
+            progress.step()
+            yield index, outcome
+
+
+def _lost(task: parallel.Task, exc: BaseException) -> parallel.Outcome:
+    reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    return parallel.Outcome(
+        task.shown, error=f"{task.shown}: its Ray worker was lost twice ({reason[:200]})"
+    )
+
+
+# -- on the workers ---------------------------------------------------------------------------
+
+
+def _enter(cwd: str) -> None:
+    """Run from the driver's working folder (relative paths, as given)."""
+    if os.getcwd() != cwd:
+        try:
+            os.chdir(cwd)
+        except OSError as exc:
+            raise RuntimeError(
+                f"this Ray node has no folder {cwd} (the files must be at the same paths "
+                "on every node)"
+            ) from exc
+
+
+def _lint_chunk(shared: Any, tasks: list[parallel.Task]) -> list[parallel.Outcome]:
+    context, flags, work, cwd = shared
+    _enter(cwd)
+    return [work(task, context, flags) for task in tasks]
+
+
+def _prepare(shared: Any, task: parallel.Task) -> tuple[str, str] | None:
+    """The model as the engines read it (the file read and expanded here)."""
+    from pathlib import Path
+
+    from urdflint.engine import linter
+    from urdflint.engines import runner
+
+    context, _, _, cwd = shared
+    _enter(cwd)
+    if task.data is not None:
+        return None  # stdin: its lint task starts the engines itself
+    try:
+        doc = linter.load(Path(task.name), task.shown, task.settings, context)
+        return runner.prepared(doc)
+    except Exception:  # (unreadable or broken: the lint task reports it)
+        return None
+
+
+def _probe(engine: str, model: tuple[str, str]) -> Any:
+    from urdflint.engines import runner
+
+    name, text = model
+    return runner.probe(engine, name, text)
+
+
+def _lint_given(shared: Any, task: parallel.Task, answers: dict[str, Any]) -> parallel.Outcome:
+    from urdflint.engines import runner
+
+    context, flags, work, cwd = shared
+    _enter(cwd)
+    with runner.answered(answers):
+        return work(task, context, flags)  # type: ignore[no-any-return]
