@@ -97,6 +97,18 @@ def run(args: argparse.Namespace) -> int:
     fix.report(args, findings)
     for message in outcome.errors:
         print(f"urdflint: error: {message}", file=sys.stderr)
+    _write_report(args, files, outcome, findings, reports)
+    return _exit_code(args, files, outcome, findings)
+
+
+def _write_report(
+    args: argparse.Namespace,
+    files: list[str],
+    outcome: Run,
+    findings: list[Finding],
+    reports: list[tuple[str, Path]],
+) -> None:
+    """The main output and the --report files."""
     fmt = args.format
     if fmt == "auto":
         fmt = "github" if os.environ.get("GITHUB_ACTIONS") == "true" else "text"
@@ -114,7 +126,6 @@ def run(args: argparse.Namespace) -> int:
         docs_url=args.docs_url or os.environ.get("URDFLINT_DOCS_URL") or None,
     )
     _write_outputs([(fmt, args.output), *reports], findings, info, _display(args, info, files))
-    return _exit_code(args, files, outcome, findings)
 
 
 def _lint_files(

@@ -209,9 +209,8 @@ def _more_options(check: argparse.ArgumentParser) -> None:
         action="append",
         default=[],
         metavar="FORMAT:PATH",
-        help="also write FORMAT (" + ", ".join((*formatters.NAMES, "jsonl")) + ") to PATH "
-        "(repeatable), "
-        "e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
+        help="also write FORMAT (" + ", ".join((*formatters.NAMES, "jsonl")) + ") to PATH, "
+        "repeatable, e.g. --report sarif:urdflint.sarif --report junit:urdflint.xml",
     )
     gate_options(check)
 

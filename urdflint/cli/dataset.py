@@ -3,8 +3,9 @@
 A run writes dataset records (:mod:`urdflint.outputs.records`) when its main output is
 ``--format jsonl``, a ``--report jsonl:PATH`` asks for them, or ``--resume FILE`` names a
 results file. Then each task also records the file's digest and every input the check read,
-and the matrix of every target is computed (the report's "loads in" columns), shown only
-with ``--matrix``.
+and its matrix rows: those of the targets its findings are for, and with ``--matrix`` every
+target's (the report's "loads in" columns); the text and JSON outputs show them only with
+``--matrix``.
 
 ``--resume FILE`` reads the records FILE holds, reuses each one whose file, settings and
 inputs are unchanged (nothing is checked again), checks the other files and appends their
@@ -18,7 +19,6 @@ only counts of the findings it has written: memory stays flat over 100,000 files
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from collections.abc import Iterator, Sequence
@@ -110,32 +110,7 @@ def plan(args: argparse.Namespace, reports: Sequence[tuple[str, Path]]) -> Plan:
     return found
 
 
-# -- one task, recorded ---------------------------------------------------------------------
-
-
-def lint_recorded(task: parallel.Task, context: Any, flags: parallel.Flags) -> parallel.Outcome:
-    """:func:`parallel.lint_one`, with the file's digest and the inputs the check read."""
-    from urdflint.cache import code_folders, deps
-
-    ignore = context.cache.ignore if getattr(context, "cache", None) else code_folders()
-    with deps.recording(ignore) as recorder:
-        outcome = parallel.lint_one(task, context, flags)
-        inputs = recorder.deps()
-    if task.data is not None:
-        digest: str | None = deps.digest_bytes(task.data)
-    else:
-        digest = deps.file_digest(os.path.abspath(task.name))
-    return replace(outcome, inputs=_json_inputs(inputs), digest=digest)
-
-
-def _json_inputs(inputs: Sequence[Any]) -> list[Any] | None:
-    """The inputs as JSON-able ``[kind, name, value]`` (None: one is not: never reused)."""
-    found = [[d.kind, d.name, d.value] for d in inputs]
-    try:
-        json.dumps(found)
-    except (TypeError, ValueError):
-        return None
-    return found
+# -- resuming --------------------------------------------------------------------------------
 
 
 def _as_deps(inputs: list[Any]) -> tuple[Any, ...]:
@@ -148,9 +123,6 @@ def _tupled(value: Any) -> Any:
     if isinstance(value, list):
         return tuple(_tupled(v) for v in value)
     return value
-
-
-# -- resuming --------------------------------------------------------------------------------
 
 
 def settings_digest(found: Plan, task: parallel.Task, context: Any) -> str:
@@ -186,8 +158,26 @@ def reusable(found: Plan, task: parallel.Task, context: Any) -> parallel.Outcome
         found.stale += 1
         return None
     found.reused += 1
-    outcome: parallel.Outcome = records.outcome(item)
-    return outcome
+    return outcome_of(item)
+
+
+def outcome_of(item: dict[str, Any]) -> parallel.Outcome:
+    """The :class:`parallel.Outcome` a record was written from."""
+    return parallel.Outcome(
+        item["path"],
+        [records.finding(f) for f in item["findings"]],
+        tuple(item["ran"]),
+        {code: tuple(m) for code, m in item["skipped"].items()},
+        bool(item["crashed"]),
+        item["model"],
+        list(item["matrix"]),
+        item["error"],
+        item["targets"],
+        links=item.get("links"),
+        joints=item.get("joints"),
+        engines=tuple(item.get("engines") or ()),
+        inputs=item.get("inputs"),
+    )
 
 
 # -- writing -------------------------------------------------------------------------------
@@ -241,7 +231,7 @@ def execute(
         stream = ray_run.run(pending, context, flags, args)
     else:
         jobs = parallel.jobs_for(args.jobs, len(pending))
-        stream = enumerate(parallel.run(pending, context, flags, jobs, lint_recorded))
+        stream = enumerate(parallel.run(pending, context, flags, jobs, parallel.lint_recorded))
     for position, outcome in stream:
         index = todo[position]
         write(found, tasks[index], outcome, context)

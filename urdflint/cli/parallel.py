@@ -90,6 +90,34 @@ def lint_one(task: Task, context: Any, flags: Flags) -> Outcome:
     )
 
 
+def lint_recorded(task: Task, context: Any, flags: Flags) -> Outcome:
+    """:func:`lint_one`, with the file's digest and the inputs the check read (dataset
+    records: ``--format jsonl``, ``--resume``)."""
+    from urdflint.cache import code_folders, deps
+
+    ignore = context.cache.ignore if getattr(context, "cache", None) else code_folders()
+    with deps.recording(ignore) as recorder:
+        outcome = lint_one(task, context, flags)
+        inputs = recorder.deps()
+    if task.data is not None:
+        digest: str | None = deps.digest_bytes(task.data)
+    else:
+        digest = deps.file_digest(os.path.abspath(task.name))
+    return replace(outcome, inputs=_json_inputs(inputs), digest=digest)
+
+
+def _json_inputs(inputs: Sequence[Any]) -> list[Any] | None:
+    """The inputs as JSON-able ``[kind, name, value]`` (None: one is not: never reused)."""
+    import json
+
+    found = [[d.kind, d.name, d.value] for d in inputs]
+    try:
+        json.dumps(found)
+    except (TypeError, ValueError):
+        return None
+    return found
+
+
 def _cache_parts(task: Task, context: Any, flags: Flags) -> tuple[Any, ...] | None:
     """The key of a task's result in the analysis cache (None: not cached)."""
     if getattr(context, "cache", None) is None or flags.emit_expanded or task.settings.confirm:

@@ -55,20 +55,53 @@ def connect(args: argparse.Namespace) -> Any:
     os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
     quiet: dict[str, Any] = {"log_to_driver": False, "logging_level": logging.ERROR}
     address = args.ray_address or os.environ.get("RAY_ADDRESS")
+    if address and address != "auto":
+        problem = unreachable(address)
+        if problem:
+            raise UsageError(
+                f"--executor ray: no Ray cluster answers at {address}: {problem}"
+            )
+    running = address or _running_here()
     try:
-        if address:
-            ray.init(address=address, **quiet)
-            return ray
-        try:
-            ray.init(address="auto", **quiet)  # a Ray started here (ray start --head)
-        except (ConnectionError, RuntimeError):
+        if running:
+            ray.init(address=running, **quiet)
+        else:  # no Ray here: a new one for this run, on this machine's CPUs
             cpus = args.jobs or parallel.cpu_count()
             ray.init(num_cpus=cpus, include_dashboard=False, **quiet)
     except Exception as exc:  # (Ray raises many kinds; one line for each)
-        where = address or "a local Ray"
+        where = running or "a new local Ray"
         reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise UsageError(f"--executor ray: cannot connect to {where}: {reason}") from None
+        raise UsageError(f"--executor ray: cannot start or join {where}: {reason}") from None
     return ray
+
+
+def unreachable(address: str, timeout: float = 3.0) -> str | None:
+    """Why nothing answers at ``host:port`` (``ray://host:port``), or None: Ray itself
+    retries an address that does not answer for minutes."""
+    import socket
+
+    text = address.removeprefix("ray://")
+    host, _, port = text.rpartition(":")
+    if not host or not port.isdigit():
+        return "expected host:port or ray://host:port"
+    try:
+        with socket.create_connection((host.strip("[]"), int(port)), timeout=timeout):
+            return None
+    except OSError as exc:
+        return exc.strerror or str(exc) or type(exc).__name__
+
+
+def _running_here() -> str | None:
+    """The address of a Ray started on this machine (``ray start --head``) that answers."""
+    import tempfile
+
+    folder = os.environ.get("RAY_TMPDIR") or os.path.join(tempfile.gettempdir(), "ray")
+    try:
+        with open(os.path.join(folder, "ray_current_cluster"), encoding="utf-8") as handle:
+            address = handle.read().strip()
+    except OSError:
+        return None
+    return address if address and unreachable(address, 1.0) is None else None
 
 
 def run(
@@ -79,9 +112,7 @@ def run(
         return
     ray = connect(args)
     cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
-    from urdflint.cli import dataset
-
-    work = dataset.lint_recorded if flags.record else parallel.lint_one
+    work = parallel.lint_recorded if flags.record else parallel.lint_one
     shared = ray.put((replace(context, environ=dict(os.environ)), flags, work, os.getcwd()))
     remote = _remotes(ray)
     progress = parallel.Progress(len(tasks), sys.stderr)
@@ -99,7 +130,7 @@ def _remotes(ray: Any) -> dict[str, Any]:
     return {
         "lint": ray.remote(max_retries=1)(_lint_chunk),
         "prepare": ray.remote(max_retries=1)(_prepare),
-        "probe": ray.remote(max_retries=1)(_probe),
+        "probe": ray.remote(max_retries=1, num_cpus=0.5)(_probe),
         "given": ray.remote(max_retries=1)(_lint_given),
     }
 

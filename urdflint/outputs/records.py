@@ -203,24 +203,3 @@ def _autofix(data: dict[str, Any] | None) -> Any:
         for e in data["edits"]
     )
     return Autofix(data["applicability"], data["description"], edits, data.get("unavailable"))
-
-
-def outcome(data: dict[str, Any]) -> Any:
-    """The :class:`urdflint.cli.parallel.Outcome` a record was written from."""
-    from urdflint.cli.parallel import Outcome
-
-    return Outcome(
-        data["path"],
-        [finding(f) for f in data["findings"]],
-        tuple(data["ran"]),
-        {code: tuple(m) for code, m in data["skipped"].items()},
-        bool(data["crashed"]),
-        data["model"],
-        list(data["matrix"]),
-        data["error"],
-        data["targets"],
-        links=data.get("links"),
-        joints=data.get("joints"),
-        engines=tuple(data.get("engines") or ()),
-        inputs=data.get("inputs"),
-    )
