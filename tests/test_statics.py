@@ -375,3 +375,14 @@ def test_absurd_payload_or_gravity_is_a_usage_error_not_a_crashed_rule(
     with pytest.raises(SystemExit) as stopped:
         main(["check", "--isolated", option, str(D001 / "bad.urdf")])
     assert stopped.value.code == 2 and words in capsys.readouterr().err
+
+
+def test_a_negative_mass_leaves_the_statics_to_the_inertia_rules() -> None:
+    """Gravity on a negative mass pulls upwards: no torque to judge (a planted negative mass
+    on a real humanoid made the search divide by a negative total mass: U001)."""
+    text = ARM_TEXT.replace('<mass value="2', '<mass value="-200', 1)
+    assert text != ARM_TEXT
+    found = loads(text)
+    assert not found.ok and found.reason is not None and "negative" in found.reason
+    codes = {f.code for f in lint_text(text)}
+    assert "I002" in codes and "U001" not in codes and "D001" not in codes

@@ -58,9 +58,7 @@ def connect(args: argparse.Namespace) -> Any:
     if address and address != "auto":
         problem = unreachable(address)
         if problem:
-            raise UsageError(
-                f"--executor ray: no Ray cluster answers at {address}: {problem}"
-            )
+            raise UsageError(f"--executor ray: no Ray cluster answers at {address}: {problem}")
     running = address or _running_here()
     try:
         if running:

@@ -161,6 +161,10 @@ def compute(doc: Document, settings: StaticsSettings) -> Statics:
     if not physics.built:
         result.reason, result.missing = physics.reason, physics.missing
         return result
+    bad = _unphysical_mass(doc)
+    if bad is not None:  # gravity would pull upwards, or nowhere: the I rules report it
+        result.reason = f"link '{bad}' has a negative or invalid mass"
+        return result
     import numpy as np
     import pinocchio as pin
 
@@ -185,6 +189,18 @@ def compute(doc: Document, settings: StaticsSettings) -> Statics:
         )
     result.seconds = time.perf_counter() - start
     return result
+
+
+def _unphysical_mass(doc: Document) -> str | None:
+    """The first link whose mass is negative or not a finite number."""
+    from urdflint.model.inertia import read_inertial
+
+    for link in doc.links:
+        inertial = read_inertial(link.element)
+        mass = inertial.mass if inertial is not None else None
+        if mass is not None and not (math.isfinite(mass) and mass >= 0.0):
+            return link.name
+    return None
 
 
 def sample(problem: Problem) -> tuple[Any, Any]:
