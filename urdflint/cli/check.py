@@ -237,7 +237,9 @@ def _lean_end(args: argparse.Namespace, files: list[str], outcome: Run) -> int:
         f"{counts[s]} {s}{'' if counts[s] == 1 else 's'}" for s in ("error", "warning", "info")
     ]
     where = f" (records in {args.output})" if args.output else ""
-    print(f"urdflint: {', '.join(parts)} in {len(outcome.checked)} file(s){where}", file=sys.stderr)
+    if outcome.checked and not args.quiet:
+        checked = len(outcome.checked)
+        print(f"urdflint: {', '.join(parts)} in {checked} file(s){where}", file=sys.stderr)
     if outcome.errors or outcome.crashed or not files:
         return EXIT_ERROR
     threshold = FAIL_LEVEL.get(outcome.fail_on)
