@@ -92,42 +92,54 @@ def read(path: Path) -> tuple[list[dict[str, Any]], int]:
     """The records of a results file, and the length in bytes of its complete lines (a run
     that was stopped may have cut its last line: it is left out, and a resumed run
     writes from there). Raises :class:`Unreadable` for a file that is not records."""
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise Unreadable(f"{path}: cannot read: {exc.strerror or exc}") from None
     found: list[dict[str, Any]] = []
     good = 0
-    lines = data.split(b"\n")
-    for number, raw in enumerate(lines, 1):
-        last = number == len(lines)
-        if not raw.strip():
-            good += len(raw) + (0 if last else 1)
-            continue
-        try:
-            item = json.loads(raw)
-        except ValueError:
-            if last:  # cut by a stop: the lines before it are whole
-                break
-            raise Unreadable(f"{path}:{number}: not a JSON line") from None
-        if not isinstance(item, dict) or item.get("record") != FORMAT or "path" not in item:
-            raise Unreadable(
-                f"{path}:{number}: not an urdflint record (write one with --format jsonl)"
-            )
-        if last:  # a whole record without its newline: keep it, and end the line
+    for item, end in scan(path):
+        if item is not None:
             found.append(item)
-            good += len(raw)
-            break
-        found.append(item)
-        good += len(raw) + 1
+        good = end
     return found, good
+
+
+def each(path: Path) -> Iterator[dict[str, Any]]:
+    """The records of a results file one at a time (memory stays flat over a large one)."""
+    for item, _ in scan(path):
+        if item is not None:
+            yield item
+
+
+def scan(path: Path) -> Iterator[tuple[dict[str, Any] | None, int]]:
+    """Each record (``None`` for a blank line) with the byte offset where its line ends; a
+    cut last line (no newline, not JSON) ends the scan."""
+    try:
+        handle = path.open("rb")
+    except OSError as exc:
+        raise Unreadable(f"{path}: cannot read: {exc.strerror or exc}") from None
+    with handle:
+        end = 0
+        for number, raw in enumerate(handle, 1):
+            end += len(raw)
+            if not raw.strip():
+                yield None, end
+                continue
+            try:
+                item = json.loads(raw)
+            except ValueError:
+                if not raw.endswith(b"\n"):  # cut by a stop: the lines before it are whole
+                    return
+                raise Unreadable(f"{path}:{number}: not a JSON line") from None
+            if not isinstance(item, dict) or item.get("record") != FORMAT or "path" not in item:
+                raise Unreadable(
+                    f"{path}:{number}: not an urdflint record (write one with --format jsonl)"
+                )
+            yield item, end
 
 
 def iterate(paths: Sequence[Path]) -> Iterator[dict[str, Any]]:
     """The records of several files in turn, the last record of a path winning."""
     latest: dict[str, dict[str, Any]] = {}
     for path in paths:
-        for item in read(path)[0]:
+        for item in each(path):
             latest.pop(item["path"], None)
             latest[item["path"]] = item
     yield from latest.values()

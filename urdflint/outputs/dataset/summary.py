@@ -63,17 +63,17 @@ def load(paths: Sequence[Path]) -> list[dict[str, Any]]:
     but not one whole record is not)."""
     latest: dict[str, dict[str, Any]] = {}
     for path in paths:
-        found, _ = records.read(path)
-        if not found and _has_text(path):
-            raise records.Unreadable(
-                f"{path}: not an urdflint record (write one with --format jsonl)"
-            )
-        for item in found:
+        count = 0
+        for item in records.each(path):  # one at a time, slimmed as read
             if not isinstance(item["path"], str):
                 raise records.Unreadable(f"{path}: a record whose path is not a string")
             latest.pop(item["path"], None)
             latest[item["path"]] = slim(item)
-        del found
+            count += 1
+        if not count and _has_text(path):
+            raise records.Unreadable(
+                f"{path}: not an urdflint record (write one with --format jsonl)"
+            )
     return list(latest.values())
 
 
