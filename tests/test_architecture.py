@@ -4,7 +4,7 @@ and no function or module grows past what one reader can hold.
 Imports are read with ``ast``: module-level and function-level imports both count, imports
 under ``if TYPE_CHECKING:`` do not (they never run). The layers, lowest first:
 
-    model <- cache <- sources <- engine <- rules, outputs, engines <- server <- cli
+    model <- cache <- sources <- engine <- rules, outputs, engines <- server, lsp, mcp <- cli
 
 A module may import its own layer and the layers below it; ``rules``, ``outputs`` and
 ``engines`` do not import each other (the E rules read the engines' outcomes through the
@@ -35,6 +35,7 @@ LAYERS = {
     "urdflint.engines": 3,
     "urdflint.server": 4,
     "urdflint.lsp": 4,
+    "urdflint.mcp": 4,
     "urdflint.cli": 5,
 }
 FACADE_RANK = 2.5  # urdflint/__init__.py: importable from rules and outputs upwards

@@ -12,7 +12,7 @@ import sys
 from collections.abc import Sequence
 
 from urdflint import __version__
-from urdflint.cli import cache, check, info, lsp, report, rules, serve
+from urdflint.cli import cache, check, info, lsp, mcp, report, rules, serve
 from urdflint.cli.common import EXIT_ERROR, EXIT_FINDINGS, EXIT_OK, UsageError
 from urdflint.engine.options import SettingsFinder
 from urdflint.sources.discovery import collect
@@ -28,6 +28,7 @@ COMMANDS = {
     "explain": rules.run_explain,
     "serve": serve.run,
     "lsp": lsp.run,
+    "mcp": mcp.run,
     "cache": cache.run,
     "report": report.run,
 }
@@ -45,6 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
     rules.add_parsers(sub)
     serve.add_parser(sub)
     lsp.add_parser(sub)
+    mcp.add_parser(sub)
     cache.add_parser(sub)
     report.add_parser(sub)
     return parser
