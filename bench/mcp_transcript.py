@@ -67,6 +67,9 @@ async def exchange(folder: Path, arguments: dict[str, Any]) -> tuple[list[Any], 
             results["check"] = await call("check", arguments)
             results["preview"] = await call("fix", arguments)
             results["write"] = await call("fix", {**arguments, "write": True})
+            # the agent accepts the estimates for links with no mass at all (a dropped link
+            # is worse than a guessed inertia): the unsafe fixes, written
+            results["unsafe"] = await call("fix", {**arguments, "write": True, "unsafe": True})
             results["again"] = await call("check", arguments)
             left = results["again"].structured_content["findings"]
             unfixable = [f for f in left if f["autofix"] is None and f["severity"] != "info"]
@@ -157,7 +160,8 @@ def markdown(robot: str, wire: list[Any], results: dict[str, Any]) -> str:
         "Produced by `bench/mcp_transcript.py` (re-run it to regenerate this file): the SDK's",
         "stdio client (`mcp` " + _sdk() + ") starts `python -m urdflint mcp` in a temporary copy",
         f"of `shared/corpus/robots/{robot}` and lists that copy as its only root. The agent calls",
-        "check, fix (write=false), fix (write=true), check again, explain. Below, each JSON-RPC",
+        "check, fix (write=false), fix (write=true), fix (write=true, unsafe=true), check again,",
+        "and explain for what no fix covers. Below, each JSON-RPC",
         "request and its answer as they crossed the wire, trimmed where a list or a text is long",
         "(each cut says what it left out). The copy's path is shown as `$ROOT`.",
         "",
@@ -168,6 +172,8 @@ def markdown(robot: str, wire: list[Any], results: dict[str, Any]) -> str:
         f"{preview['unsafe_left']} more with unsafe=true; nothing written.",
         f"- fix, write=true: {results['write'].structured_content['applied']} fixes applied in "
         f"{len(results['write'].structured_content['written'])} file.",
+        f"- fix, write=true, unsafe=true: {results['unsafe'].structured_content['applied']} "
+        "more fixes applied (the estimated inertias).",
         f"- check again: {_summary(after)}; none of the fixed findings is left "
         f"({', '.join(c for c in fixed if c not in _codes(after)) or 'none'} gone).",
         "",
