@@ -18,7 +18,8 @@ then, when that element is unsuitable, the next suitable one in document order:
   ``<limit>``, else the first other moving joint's with a positive effort (velocity).
 
 Geometry defects use an existing collision element and add one (to the first moving link)
-when the robot has none of the kind. This module holds no tests.
+when the robot has none of the kind. A repeated element is a changed copy of the original,
+written right after it. This module holds no tests.
 """
 
 from __future__ import annotations
@@ -375,6 +376,33 @@ def tiny_mass(tree: Tree) -> Element | None:
     return _set(element, "value", 1e-9)
 
 
+def repeated_inertial(tree: Tree) -> Element | None:
+    """A second ``<inertial>`` after the body's: its copy with the mass and every moment and
+    product of inertia five times larger (the same centre of mass). Returns the copy."""
+    body = inertial(tree)
+    if body is None:
+        return None
+    twin = _twin(body)
+    weight, moments = twin.find("mass"), twin.find("inertia")
+    assert weight is not None and moments is not None  # the body has both (body_link)
+    _set(weight, "value", 5 * _number(weight, "value"))
+    for name in _components(moments):
+        _set(moments, name, 5 * (_float(moments, name) or 0.0))
+    return twin
+
+
+def _twin(element: Element) -> Element:
+    """A copy of ``element`` written right after it, on its own line with the same
+    indentation; the copy."""
+    before = element.getprevious()
+    parent = element.getparent()
+    indent = before.tail if before is not None else parent.text if parent is not None else None
+    twin = copy.deepcopy(element)
+    twin.tail, element.tail = element.tail, indent or "\n"
+    element.addnext(twin)
+    return twin
+
+
 def invalid_number(tree: Tree) -> Element | None:
     element = mass(tree)
     if element is not None:
@@ -431,6 +459,18 @@ def inverted_limits(tree: Tree) -> Element | None:
     element.set("lower", upper)
     element.set("upper", lower)
     return element
+
+
+def repeated_limit(tree: Tree) -> Element | None:
+    """A second ``<limit>`` after the limited joint's ranged one: its copy with the lower and
+    upper bounds twice as far from zero (the same effort and velocity). Returns the copy."""
+    element = _ranged_limit(tree)
+    if element is None:
+        return None
+    twin = _twin(element)
+    for name in ("lower", "upper"):
+        _set(twin, name, 2 * _number(twin, name))
+    return twin
 
 
 def equal_limits(tree: Tree) -> Element | None:
@@ -686,10 +726,12 @@ DEFECTS: dict[str, Planter] = {
         zero_moment_rod,
         singular_welded_link,
         tiny_mass,
+        repeated_inertial,
         invalid_number,
         root_link_with_mass_only,
         inverted_limits,
         equal_limits,
+        repeated_limit,
         zero_axis,
         non_unit_axis,
         planar_joint,

@@ -15,4 +15,5 @@ from urdflint.rules.document import (  # noqa: F401
     x012_undeclared_namespace_prefix,
     x013_unknown_attribute,
     x014_unsafe_name,
+    x015_repeated_element,
 )

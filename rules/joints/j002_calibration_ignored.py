@@ -1,7 +1,7 @@
 """A joint has a `<calibration>` element, which the simulators ignore.
 
 ## What it does
-Reports every `<calibration>` inside a `<joint>`.
+Reports the `<calibration>` of a `<joint>` (the first: a repeated one is X015's).
 
 ## Why is this bad?
 `<calibration>` (the `rising`/`falling` reference positions) is read by urdfdom
@@ -28,7 +28,7 @@ from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
-from urdflint.model.document import Document, children
+from urdflint.model.document import Document
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 
@@ -42,7 +42,8 @@ from urdflint.model.finding import Severity
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
-        for el in children(joint.element, "calibration"):
+        el = joint.find("calibration")
+        if el is not None:
             yield Hit(
                 el,
                 f"{J.label(joint)} has a <calibration>, which Gazebo, MuJoCo and Drake ignore",

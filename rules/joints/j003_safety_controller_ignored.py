@@ -1,7 +1,7 @@
 """A joint has a `<safety_controller>`, which the simulators ignore.
 
 ## What it does
-Reports every `<safety_controller>` inside a `<joint>`.
+Reports the `<safety_controller>` of a `<joint>` (the first: a repeated one is X015's).
 
 ## Why is this bad?
 `<safety_controller>` (soft limits `soft_lower_limit`/`soft_upper_limit` and the
@@ -31,7 +31,7 @@ from urdflint.rules import consequences as K
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
-from urdflint.model.document import Document, children
+from urdflint.model.document import Document
 from urdflint.model.effects import single
 from urdflint.model.finding import Severity
 
@@ -45,7 +45,8 @@ from urdflint.model.finding import Severity
 )
 def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
-        for el in children(joint.element, "safety_controller"):
+        el = joint.find("safety_controller")
+        if el is not None:
             yield Hit(
                 el,
                 f"{J.label(joint)} has a <safety_controller>, which Gazebo, MuJoCo and Drake "

@@ -23,7 +23,7 @@ from collections.abc import Iterator
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import joints as J
-from urdflint.model.document import Document, children
+from urdflint.model.document import Document
 from urdflint.model.edits import RemoveElement, Repair
 from urdflint.model.finding import Severity
 
@@ -39,7 +39,8 @@ def check(doc: Document) -> Iterator[Hit]:
     for joint in doc.joints:
         if joint.type not in J.AXIS_IGNORED:
             continue
-        for el in children(joint.element, "axis"):
+        el = joint.find("axis")  # a repeated <axis> is X015's
+        if el is not None:
             yield Hit(
                 el,
                 f"{J.label(joint)} has an <axis>, which is ignored for {joint.type} joints",
