@@ -27,6 +27,7 @@ import argparse
 import logging
 import os
 import sys
+import uuid
 from collections.abc import Iterator, Sequence
 from dataclasses import replace
 from typing import Any
@@ -111,7 +112,8 @@ def run(
     ray = connect(args)
     cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
     work = parallel.lint_recorded if flags.record else parallel.lint_one
-    shared = ray.put((replace(context, environ=dict(os.environ)), flags, work, os.getcwd()))
+    run_id = uuid.uuid4().hex  # a worker keeps one context per run (its mesh cache...)
+    shared = ray.put((run_id, replace(context, environ=dict(os.environ)), flags, work, os.getcwd()))
     remote = _remotes(ray)
     progress = parallel.Progress(len(tasks), sys.stderr)
     try:
@@ -228,6 +230,13 @@ def _confirmed(
 
 
 def _lost(task: parallel.Task, exc: BaseException) -> parallel.Outcome:
+    """A file whose task failed: its worker died twice, or the task raised."""
+    import ray.exceptions
+
+    if isinstance(exc, ray.exceptions.RayTaskError):  # raised in the task: say what
+        cause = exc.cause if exc.cause is not None else exc
+        why = f"{type(cause).__name__}: {cause}".strip().splitlines()[0]
+        return parallel.Outcome(task.shown, error=f"{task.shown}: internal error on Ray: {why}")
     reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
     return parallel.Outcome(
         task.shown, error=f"{task.shown}: its Ray worker was lost twice ({reason[:200]})"
@@ -235,6 +244,20 @@ def _lost(task: parallel.Task, exc: BaseException) -> parallel.Outcome:
 
 
 # -- on the workers ---------------------------------------------------------------------------
+
+
+_RUN: tuple[str, Any] | None = None  # this worker's run: its id and (context, flags, ...)
+
+
+def _shared(value: Any) -> tuple[Any, Any, Any, str]:
+    """The run's (context, flags, work, cwd), deserialized once per worker and run: Ray
+    hands each task a new copy, and a context per task would read every mesh again."""
+    global _RUN
+    run_id, *rest = value
+    if _RUN is None or _RUN[0] != run_id:
+        _RUN = (run_id, tuple(rest))
+    context, flags, work, cwd = _RUN[1]
+    return context, flags, work, cwd
 
 
 def _enter(cwd: str) -> None:
@@ -250,7 +273,7 @@ def _enter(cwd: str) -> None:
 
 
 def _lint_chunk(shared: Any, tasks: list[parallel.Task]) -> list[parallel.Outcome]:
-    context, flags, work, cwd = shared
+    context, flags, work, cwd = _shared(shared)
     _enter(cwd)
     return [work(task, context, flags) for task in tasks]
 
@@ -262,7 +285,7 @@ def _prepare(shared: Any, task: parallel.Task) -> tuple[str, str] | None:
     from urdflint.engine import linter
     from urdflint.engines import runner
 
-    context, _, _, cwd = shared
+    context, _, _, cwd = _shared(shared)
     _enter(cwd)
     if task.data is not None:
         return None  # stdin: its lint task starts the engines itself
@@ -283,7 +306,7 @@ def _probe(engine: str, model: tuple[str, str]) -> Any:
 def _lint_given(shared: Any, task: parallel.Task, answers: dict[str, Any]) -> parallel.Outcome:
     from urdflint.engines import runner
 
-    context, flags, work, cwd = shared
+    context, flags, work, cwd = _shared(shared)
     _enter(cwd)
     with runner.answered(answers):
         return work(task, context, flags)  # type: ignore[no-any-return]

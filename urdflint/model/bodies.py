@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
-from weakref import WeakKeyDictionary
 
 from urdflint.model.finding import Severity
 from urdflint.model.gazebo_spec import preserved_joints
@@ -193,14 +192,12 @@ class Bodies:
         )
 
 
-_CACHE: WeakKeyDictionary[Document, Bodies] = WeakKeyDictionary()
-
-
 def bodies(doc: Document) -> Bodies:
-    """The (cached) lumped bodies of ``doc``."""
-    found = _CACHE.get(doc)
+    """The (cached) lumped bodies of ``doc``, kept on the document: a weak mapping from the
+    document would never let it go (its value refers to the document)."""
+    found: Bodies | None = doc.__dict__.get("_lumped_bodies")
     if found is None:
-        found = _CACHE[doc] = Bodies(doc)
+        found = doc.__dict__["_lumped_bodies"] = Bodies(doc)
     return found
 
 
