@@ -3,9 +3,12 @@
 whether urdflint's per-simulator prediction agrees.
 
     .venv/bin/python bench/engine_agreement.py [--out FILE] [--md FILE] [--jobs N]
-                                               [--robots a,b] [--defects a,b]
+                                               [--robots a,b] [--defects a,b] [--real-fixtures]
                                                [--bases URDF...] [--merge JSON]
                                                [--rescore JSON]
+
+With ``--real-fixtures`` the bases are the fixtures cut down from real files for issue 29
+(mesh formats, a package nobody resolves, a terrain), each loaded as it is (the control).
 
 The base robots are the four of ``fixtures/planted/``, or with ``--bases`` real URDF files
 (a robot is named after its file, or its folder for ``model.urdf``; a ``package_map.json``
@@ -538,6 +541,12 @@ def parse(argv: list[str] | None) -> argparse.Namespace:
         help="real URDF files as the base robots (default: the fixtures)",
     )
     parser.add_argument(
+        "--real-fixtures",
+        action="store_true",
+        help="the files cut down from real ones for issue 29 (tests/test_agreement.py's "
+        "REAL_FIXTURES) as the bases, each loaded as it is (defect: none)",
+    )
+    parser.add_argument(
         "--merge",
         type=Path,
         metavar="JSON",
@@ -553,6 +562,10 @@ def parse(argv: list[str] | None) -> argparse.Namespace:
 
 
 def bases(args: argparse.Namespace) -> dict[str, Base]:
+    if args.real_fixtures:
+        from tests.test_agreement import REAL_FIXTURES
+
+        args.bases, args.defects = list(REAL_FIXTURES), CONTROL
     found = {b.name: b for b in map(base_of, args.bases)} if args.bases else fixtures()
     if args.robots:
         names = args.robots.split(",")

@@ -366,7 +366,7 @@ def test_c009_checks_every_selected_target(tmp_path: Path) -> None:
     body = mesh("a.glb") + mesh("b.dae", "visual")
     found = lint(robot(body), tmp_path, ("C009",), targets=["gazebo-classic", "mujoco"]).findings
     assert [(f.severity, f.line) for f in found] == [(Severity.ERROR, 16)]
-    assert found[0].message.startswith("Gazebo Classic and MuJoCo cannot load glTF")
+    assert found[0].message.startswith("Gazebo Classic and MuJoCo cannot load GLB")
     assert lint(robot(body), tmp_path, ("C009",), targets=["gz-sim"]).findings == []
 
 

@@ -20,10 +20,22 @@ to it shrinks it a thousand times, which this rule reports. Pinocchio 4.1
 across, so its collision geometry differs from Gazebo's for such files. STL
 and OBJ carry no unit. MuJoCo and Drake do not read Collada at all (C009).
 
-A model that is a lone static object, not a robot (one link, no joints, no mass: a ground
-plane, a terrain, a building, as in `pybullet_data`'s `plane.urdf`, a 30 m plane), may be
-large: for it only a side over 1 km counts as too large (a part of a metre or more
-exported in millimetres).
+Scenery may be large: terrains, ground planes, ramps and stairs written as URDF files for
+a simulator to load beside the robot (`pybullet_data`'s `plane.urdf`, a 30 m plane;
+Bullet's `terrain.urdf`, 29 × 29 m; a quadruped's 16 m ramps). For a mesh of scenery only a
+side over 1 km counts as too large (a part of a metre or more exported in millimetres),
+and the heuristic, `urdflint.model.scenery`, calls a mesh scenery when:
+- the model is static: no joint moves (every joint is `fixed`, or there is none) and
+  either nothing has mass (PyBullet leaves a massless base where it is) or the root link
+  is the world (`world`, `map`, `ground`, `terrain`, `floor`, `scene`), to which the rest
+  is welded;
+- or its link, or the mesh file, is named like scenery: a word of the name (split at
+  non-letters and before a capital: `terrainLink`, `ground_plane`, `ramps.obj`) is ground,
+  terrain, floor, ramp(s), stair(s), staircase, scene, world, plane, heightfield,
+  heightmap, arena or slope.
+
+A robot part is never exempt: a link with a joint that moves, named like a part, keeps
+the 10 m limit, and a mesh under 1 mm is reported on scenery too.
 
 ## Why is this bad?
 REP 103 fixes the unit of every ROS description at the metre, and so do
@@ -47,26 +59,12 @@ from collections.abc import Iterator
 from urdflint.engine.registry import Hit, rule
 from urdflint.model.document import Document
 from urdflint.model.finding import Severity
+from urdflint.model.scenery import scenery as scenery_of
 from urdflint.model.structure import q
 from urdflint.model.values import fmt
 from urdflint.sources.meshes import MAX_EXTENT, load, references, scale_hint, suspicious_size
 
-SCENERY_MAX = 1000.0  # m: the largest side a lone static object may have
-
-
-def lone_static_object(doc: Document) -> bool:
-    """One link, no joints and no mass (absent or zero): scenery (PyBullet loads mass 0 as
-    a static body), not a robot."""
-    if len(doc.links) != 1 or doc.joints:
-        return False
-    mass = doc.links[0].inertial
-    if mass is None:
-        return True
-    value = mass.find("mass")
-    try:
-        return value is None or float(value.get("value") or "0") <= 0
-    except ValueError:
-        return False
+SCENERY_MAX = 1000.0  # m: the largest side scenery (a terrain, a scene) may have
 
 
 @rule(
@@ -77,14 +75,14 @@ def lone_static_object(doc: Document) -> bool:
     needs=("trimesh",),
 )
 def check(doc: Document) -> Iterator[Hit]:
-    scenery = lone_static_object(doc)
     for ref in references(doc):
         info = load(doc, ref)
         scale = ref.scale
         if info is None or scale is None or not suspicious_size(info):
             continue
-        if scenery and MAX_EXTENT < info.largest <= SCENERY_MAX:
-            continue  # a plane or a terrain may be large
+        scenery = info.largest > MAX_EXTENT and scenery_of(doc, ref.link, ref.uri) is not None
+        if scenery and info.largest <= SCENERY_MAX:
+            continue  # a terrain, a plane or a scene may be large
         size = info.largest
         shown = " ".join(fmt(v) for v in scale)
         what = f"{ref.tag} mesh {ref.uri!r} of link {q(ref.link)}"

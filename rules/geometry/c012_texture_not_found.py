@@ -8,7 +8,8 @@ in a visual's `<material>` exactly as C004 resolves meshes (`package://`,
 every texture that is not there, with where urdflint looked. Severities follow
 C004: an error when the package or folder was found and the file is not in
 it, a warning when the package cannot be found although package paths are
-known, and one info note per unknown package otherwise. A `<texture/>`
+known or when its name is a folder of the description (C004's
+`package://meshes/...` case), and one info note per unknown package otherwise. A `<texture/>`
 without a filename is ignored by urdfdom and here.
 
 ## Why is this bad?

@@ -25,28 +25,65 @@ TRIMESH_TYPES: Mapping[str, str] = {
 }
 FORMAT_NAMES: Mapping[str, str] = {
     "stl": "STL",
-    "stla": "STL",
-    "stlb": "STL",
+    "stla": "STL (.stla)",
+    "stlb": "STL (.stlb)",
     "obj": "OBJ",
     "dae": "Collada",
     "gltf": "glTF",
-    "glb": "glTF",
+    "glb": "GLB",
     "fbx": "FBX",
     "msh": "MSH",
     "ply": "PLY",
+    "off": "OFF",
+    "vtk": "VTK",
 }
-# Mesh formats each target's loader accepts (suffix, lower case).
-# Gazebo Classic 9/11 common::MeshManager: stl/stla/stlb, dae, obj (OBJ since 2016).
-# gz-common 5 (Garden and later) adds glTF and FBX through assimp (Fortress: the first three).
-# MuJoCo's compiler reads STL, OBJ and its own MSH (no Collada).
-TARGET_FORMATS: Mapping[str, frozenset[str]] = {
-    "gazebo-classic": frozenset({"stl", "stla", "stlb", "dae", "obj"}),
-    "gz-sim": frozenset({"stl", "stla", "stlb", "dae", "obj", "gltf", "glb", "fbx"}),
-    "mujoco": frozenset({"stl", "obj", "msh"}),
-    "drake": frozenset({"obj", "vtk", "gltf"}),  # collision (proximity) geometry only
+# Mesh formats each target's loader reads, per role (suffix, lower case: every loader here
+# compares extensions case-insensitively, so box.STL reads as box.stl). None: the target
+# does not open meshes of that role when it loads the model (Drake registers visuals as
+# they are). Observed by loading a box in each format (issue 29) unless noted:
+# - Gazebo Classic 9/11 common::MeshManager: STL (stl/stla/stlb), Collada, OBJ (source);
+#   gz-common 5 (Garden and later) adds glTF and FBX through assimp (source; Fortress:
+#   the first three).
+# - MuJoCo 4.0: STL, OBJ and its own MSH ("no decoder found for mesh file" otherwise).
+# - Drake 1.51: collision meshes in OBJ, VTK or glTF (.gltf only, not .glb): "MakeConvexHull
+#   only applies to .obj, .vtk, and .gltf meshes"; visual meshes of any extension load.
+# - PyBullet 3.2.7 (UrdfFindMeshFile): .stl, .obj, .dae for both roles; else "invalid mesh
+#   filename extension" and "Cannot load URDF file". It takes .vtk (a deformable body's
+#   mesh) and then drops the shape: DROPPED.
+# - Pinocchio 4.1 (coal, assimp 6): STL, OBJ, Collada, glTF, GLB, PLY, OFF and FBX; not
+#   .stla/.stlb, MSH or VTK ("No suitable reader found for the file format").
+STL = frozenset({"stl", "stla", "stlb"})
+_GAZEBO = STL | {"dae", "obj"}
+_PINOCCHIO = frozenset({"stl", "obj", "dae", "gltf", "glb", "ply", "off", "fbx"})
+TARGET_FORMATS: Mapping[str, Mapping[str, frozenset[str] | None]] = {
+    "gazebo-classic": {"visual": _GAZEBO, "collision": _GAZEBO},
+    "gz-sim": {
+        "visual": _GAZEBO | {"gltf", "glb", "fbx"},
+        "collision": _GAZEBO | {"gltf", "glb", "fbx"},
+    },
+    "mujoco": {
+        "visual": frozenset({"stl", "obj", "msh"}),
+        "collision": frozenset({"stl", "obj", "msh"}),
+    },
+    "drake": {"visual": None, "collision": frozenset({"obj", "vtk", "gltf"})},
+    "pybullet": {
+        "visual": frozenset({"stl", "obj", "dae"}),
+        "collision": frozenset({"stl", "obj", "dae"}),
+    },
+    "pinocchio": {"visual": _PINOCCHIO, "collision": _PINOCCHIO},
 }
-COLLISION_ONLY = frozenset({"drake"})  # targets whose format limit applies to collisions
-KNOWN_FORMATS = frozenset().union(*TARGET_FORMATS.values(), TRIMESH_TYPES)
+# Formats a target accepts and then loads without the shape (PyBullet: "cannot extract mesh").
+DROPPED: Mapping[str, frozenset[str]] = {"pybullet": frozenset({"vtk"})}
+KNOWN_FORMATS = frozenset().union(
+    *(f for table in TARGET_FORMATS.values() for f in table.values() if f is not None),
+    TRIMESH_TYPES,
+)
+
+
+def reads(target: str, role: str) -> frozenset[str] | None:
+    """The formats ``target`` loads for a ``role`` ("visual" or "collision") mesh, ``None``
+    when it does not open such meshes at load time."""
+    return TARGET_FORMATS[target][role]
 
 
 def suffix(uri: str) -> str:

@@ -22,6 +22,7 @@ from urdflint.model.values import has_xacro
 from urdflint.sources.case import case_variant
 from urdflint.sources.mesh_cache import MeshCache, MeshInfo
 from urdflint.sources.resolve import NO_PACKAGE_PATH, SCHEME_RE
+from urdflint.sources.unknown_package import description_folders, pybullet_finds, searched
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -192,20 +193,26 @@ class FileProblem:
     message: str
     severity: Severity | None = None  # None: the rule's own (error)
     package_fix: bool = False  # the fix is to say where packages live
+    package: str | None = None  # a package nobody resolves (not merely one not configured)
+    pybullet: bool = False  # with ``package``: PyBullet's own search finds the file anyway
+    folder: Path | None = None  # with ``package``: the description's folder of that name
 
 
 def unresolved(doc: Document, refs: list[FileRef], noun: str) -> Iterator[FileProblem]:
     """What is wrong with each reference that does not lead to a file.
 
     An error when the package (or the URDF's folder) was found and the file is not in
-    it; a warning when the package was not found while this run can resolve packages;
-    otherwise one info note per problem (unknown package, unsupported scheme) naming how
-    many ``noun`` references it leaves unchecked.
+    it; a warning, with the package's name (:func:`unknown_package`: the rule may weigh it
+    per target), when the package was not found while this run can resolve packages or
+    when it names a folder of the description; otherwise one info note per problem
+    (unknown package, unsupported scheme) naming how many ``noun`` references it leaves
+    unchecked.
     """
     answers = [(ref, resolved(doc, ref.uri)) for ref in refs]
     configured = packages_configured(doc) or any(
         a.found and package_of(ref.uri) is not None for ref, a in answers
     )
+    folders = description_folders(doc.resolver, [r.uri for r, a in answers if not a.found])
     unchecked: dict[str, list[FileRef]] = {}  # problem -> references, for the notes
     looked: dict[str, tuple[str, ...]] = {}
     for ref, answer in answers:
@@ -219,10 +226,9 @@ def unresolved(doc: Document, refs: list[FileRef], noun: str) -> Iterator[FilePr
                 continue  # C016 reports a name in another letter case
             hint = nearby(answer.path or last)
             yield FileProblem(ref.element, f"{ref.what} is missing: {problem}{hint}")
-        elif problem.startswith("package ") and configured:
-            tried = f" (looked in: {'; '.join(answer.tried)})" if answer.tried else ""
-            message = f"{ref.what} cannot be found: {problem}{tried}"
-            yield FileProblem(ref.element, message, Severity.WARNING, package_fix=True)
+        elif problem.startswith("package ") and (configured or package_of(ref.uri) in folders):
+            folder = folders.get(package_of(ref.uri) or "")
+            yield unknown_package(doc, ref, answer, folder, mesh=noun == "mesh")
         elif "outside the allowed folder" in problem:
             message = f"{ref.what} is not readable: {problem}"
             yield FileProblem(ref.element, message, Severity.WARNING)
@@ -231,13 +237,42 @@ def unresolved(doc: Document, refs: list[FileRef], noun: str) -> Iterator[FilePr
             looked.setdefault(problem, answer.tried)
     for problem, group in unchecked.items():
         count = f"its {len(group)} {noun} references are" if len(group) > 1 else f"its {noun} is"
-        tried = f" (looked in: {'; '.join(looked[problem])})" if looked[problem] else ""
+        where = [*looked[problem]]
+        if problem.startswith("package "):
+            where += searched(doc.resolver)
+        tried = f" (looked in: {'; '.join(where)})" if where else ""
         yield FileProblem(
             group[0].element,
             f"{problem}{tried}, so {count} not checked (first: {group[0].what})",
             Severity.WARNING if problem == NO_PACKAGE_PATH else Severity.INFO,
             package_fix=problem.startswith("package "),
         )
+
+
+def unknown_package(
+    doc: Document, ref: FileRef, answer: Resolved, folder: Path | None, mesh: bool = True
+) -> FileProblem:
+    """A reference to a package that was not found where this run looks for packages, or
+    that names a folder of the description: where it was looked for, and (for a ``mesh``)
+    whether PyBullet's own search finds the file."""
+    resolver = doc.resolver
+    looked = [*answer.tried, *searched(resolver)]
+    tried = f" (looked in: {'; '.join(looked)})" if looked else ""
+    message = f"{ref.what} cannot be found: {answer.problem}{tried}"
+    name = package_of(ref.uri)
+    if folder is not None:
+        message += f"; {name!r} is a folder of the description ({folder}), not a package"
+    found = pybullet_finds(resolver, ref.uri) if mesh else None
+    if found is not None:
+        message += f"; PyBullet, which drops package://, reads {found}"
+    elif folder is not None:
+        message += nearby(folder.parent / _inside(ref.uri))
+    return FileProblem(ref.element, message, Severity.WARNING, True, name, bool(found), folder)
+
+
+def _inside(uri: str) -> str:
+    """``NAME/rest`` of ``package://NAME/rest``."""
+    return "/".join(p for p in uri.strip()[len("package://") :].split("/") if p)
 
 
 def packages_configured(doc: Document) -> bool:
