@@ -22,7 +22,7 @@ import argparse
 import os
 import sys
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
@@ -252,7 +252,8 @@ def _say_resumed(args: argparse.Namespace, found: Plan, todo: int) -> None:
 
 
 def lean(outcome: parallel.Outcome, counts: dict[str, int]) -> parallel.Outcome:
-    """What a lean run keeps of a written file: its findings counted, not kept."""
+    """What a lean run keeps of a written file: its findings counted, not kept; only what
+    the exit code needs (its path, whether it crashed or could not be read)."""
     for finding in outcome.findings:
         counts[str(finding.severity)] += 1
-    return replace(outcome, findings=[], matrix=[], model=None, inputs=None)
+    return parallel.Outcome(outcome.shown, crashed=outcome.crashed, error=outcome.error)
