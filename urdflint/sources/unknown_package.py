@@ -105,7 +105,12 @@ def searched(resolver: Resolver) -> list[str]:
     found: list[str] = []
     if resolver.package_paths:
         found.append(f"the package paths given ({', '.join(sorted(resolver.package_paths))})")
-    roots = roots_for(getattr(resolver.workspace, "paths", ()))
+    given = tuple(getattr(resolver.workspace, "paths", ()))
+    spelled = {}  # each folder as the run was given it (not through its symbolic links)
+    for raw in given:
+        folder = raw if raw.is_dir() else raw.parent
+        spelled.setdefault(folder.resolve(), folder)
+    roots = [spelled.get(root, root) for root in roots_for(given)]
     if roots:
         count = len(resolver.workspace)
         held = f"{count} packages" if count else "no package.xml"
