@@ -188,3 +188,23 @@ def test_executor_ray_with_nobody_at_the_address_is_one_line(capsys) -> None:
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1
     assert "no Ray cluster answers at 127.0.0.1:9" in err
+
+
+def test_a_run_keeps_a_bounded_number_of_meshes_loaded(monkeypatch, tmp_path: Path) -> None:
+    """A worker of a dataset run meets thousands of meshes: the least recently used go."""
+    pytest.importorskip("trimesh")
+    from urdflint.sources import mesh_cache
+
+    monkeypatch.setattr(mesh_cache, "KEPT", 2)
+    box = ROOT / "fixtures" / "rules" / "C009" / "meshes" / "box.obj"
+    paths = []
+    for name in ("a", "b", "c"):
+        paths.append(tmp_path / f"{name}.obj")
+        shutil.copy(box, paths[-1])
+    meshes = mesh_cache.MeshCache()
+    first = meshes.load(paths[0])
+    meshes.load(paths[1])
+    assert meshes.load(paths[0]) is first  # used again: kept
+    meshes.load(paths[2])
+    assert len(meshes) == 2 and meshes.load(paths[0]) is first  # b went, not a
+    assert meshes.loads == 3

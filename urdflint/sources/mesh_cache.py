@@ -53,8 +53,11 @@ def trimesh_load(path: Path, file_type: str, resolver: Any = None) -> Any:
     )
 
 
+KEPT = 512  # meshes a run keeps loaded (the least recently used go: a dataset run reads many)
+
+
 class MeshCache:
-    """Meshes loaded during one run, by resolved path and scale.
+    """Meshes loaded during one run, by resolved path and scale (at most :data:`KEPT`).
 
     ``root`` confines every file access (the HTTP service): a mesh outside it is not
     read, and the files a mesh refers to (an OBJ's ``.mtl``, a glTF's buffers) are
@@ -86,7 +89,11 @@ class MeshCache:
         info = self._cache.get(key)
         if info is None:
             info = self._cache[key] = self._load(real, key[1])
-        elif self.cache is not None:
+            if len(self._cache) > KEPT:  # a dataset run: the least recently used goes
+                del self._cache[next(iter(self._cache))]
+            return info
+        self._cache[key] = self._cache.pop(key)  # most recently used last
+        if self.cache is not None:
             from urdflint.cache import deps
 
             deps.note_file(real)
