@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -152,7 +153,15 @@ def test_resume_after_a_killed_run_gives_the_same_records(tmp_path: Path) -> Non
         handle.write('{"record": 1, "path": "cut')  # the last line, cut by the stop
     done = subprocess.run(resumed, env=env, capture_output=True, text=True, check=False)
     assert done.returncode == 1, done.stderr
-    assert f"{len(kept)} file(s) already recorded; {40 - len(kept)} to check" in done.stderr
+    # every record kept is reused, but the first file a process checks also records the
+    # folders above the dataset it listed (a package.xml there would matter): where other
+    # work changes them meanwhile (pytest's temporary folders), that one file is checked again
+    said = re.search(
+        r"(\d+) file\(s\) already recorded(?:, (\d+) changed since)?; (\d+) to", done.stderr
+    )
+    assert said is not None, done.stderr
+    reused, stale, todo = int(said[1]), int(said[2] or 0), int(said[3])
+    assert reused + stale == len(kept) and stale <= 1 and todo == 40 - reused
     assert _without_inputs(_records(results)) == _without_inputs(_records(whole))
     assert len(results.read_text().splitlines()) == 40  # the cut line is gone
 
