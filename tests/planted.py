@@ -690,6 +690,25 @@ def missing_mesh(tree: Tree) -> Element | None:
     return _new_collision(found, "mesh", filename="meshes/missing_part.stl")
 
 
+FLAT_FIRST_OBJECT = BASES / "meshes" / "flat_first_object.obj"
+
+
+def mesh_first_object_flat(tree: Tree) -> Element | None:
+    """Like :func:`missing_mesh`, the collision becomes a mesh: an OBJ file of two objects
+    whose first is a flat square (MuJoCo reads the first object's faces only), named by its
+    absolute path so that it resolves wherever the planted file is written."""
+    geometry = next(
+        (g for e in moving_links(tree) if (g := e.find("collision/geometry")) is not None), None
+    )
+    filename = str(FLAT_FIRST_OBJECT)
+    if geometry is not None:
+        for shape in list(geometry):
+            geometry.remove(shape)
+        return etree.SubElement(geometry, "mesh", filename=filename)
+    found = first_moving_link(tree)
+    return None if found is None else _new_collision(found, "mesh", filename=filename)
+
+
 def negative_box_size(tree: Tree) -> Element | None:
     """The first collision box's first size negated; with no box, the first moving link gets
     a new collision box of size -0.05 0.05 0.05."""
@@ -750,6 +769,7 @@ DEFECTS: dict[str, Planter] = {
         world_root,
         version_1_2,
         missing_mesh,
+        mesh_first_object_flat,
         negative_box_size,
         zero_cylinder_radius,
     )

@@ -92,17 +92,6 @@ def test_severity_follows_the_targets() -> None:
     assert quiet.severity is Severity.INFO
 
 
-def test_gazebo_self_collide_makes_it_a_warning(tmp_path: Path) -> None:
-    extra = '<gazebo reference="forearm"><selfCollide>true</selfCollide></gazebo>'
-    [found] = c013(arm(tmp_path, '<box size="0.1 0.1 0.1"/>', extra))
-    assert found.severity is Severity.WARNING  # the assumed target: Gazebo Sim
-    assert "Gazebo Sim collides" in found.message
-    off = extra + '<gazebo reference="base_link"><selfCollide>false</selfCollide></gazebo>'
-    model = "<gazebo><self_collide>true</self_collide></gazebo>" + off.split("</gazebo>", 1)[1]
-    [still] = c013(arm(tmp_path, '<box size="0.1 0.1 0.1"/>', model, "m.urdf"))
-    assert still.severity is Severity.WARNING  # forearm takes the model's value
-
-
 def test_min_depth_option(tmp_path: Path) -> None:
     path = arm(tmp_path, '<box size="0.1 0.1 0.1"/>')
     assert c013(path, rules={"C013": {"min-depth": 79.0}})
@@ -131,14 +120,6 @@ def test_srdf_disabled_pairs_are_skipped(monkeypatch: pytest.MonkeyPatch) -> Non
     fake.disabled_pairs = lambda doc: {frozenset(("forearm", "base_link"))}  # type: ignore[attr-defined]
     monkeypatch.setitem(sys.modules, "urdflint.sources.srdf", fake)
     assert c013(HERE / "bad.urdf") == []
-
-
-def test_drake_collision_filter_group(tmp_path: Path) -> None:
-    extra = """<drake:collision_filter_group xmlns:drake="http://drake.mit.edu" name="g">
-    <drake:member link="base_link"/><drake:member link="forearm"/>
-    <drake:ignored_collision_filter_group name="g"/>
-  </drake:collision_filter_group>"""
-    assert c013(arm(tmp_path, '<box size="0.1 0.1 0.1"/>', extra)) == []
 
 
 # -- the pose -------------------------------------------------------------------------------

@@ -80,9 +80,7 @@ def _brute(shapes: list[Placed], margin: float) -> list[tuple[int, int]]:
     return [
         (i, j)
         for i, j in itertools.combinations(range(len(shapes)), 2)
-        if (
-            np.minimum(boxes[i][1], boxes[j][1]) - np.maximum(boxes[i][0], boxes[j][0]) >= margin
-        ).all()
+        if (np.minimum(boxes[i][1] - boxes[j][0], boxes[j][1] - boxes[i][0]) >= margin).all()
     ]
 
 

@@ -18,4 +18,5 @@ from urdflint.rules.geometry import (  # noqa: F401
     c015_package_not_a_dependency,
     c016_path_case_mismatch,
     c017_duplicate_package,
+    c018_mesh_without_volume,
 )

@@ -1,4 +1,4 @@
-"""Collision geometry of two non-adjacent links overlaps at the zero pose.
+"""Collision geometry of two links that an engine collides overlaps at the zero pose.
 
 ## What it does
 Places every `<collision>` in the world at the zero configuration (or at `--q
@@ -6,8 +6,10 @@ JOINT=VALUE` / `expect.q`; a mimic joint follows its leader, `multiplier * leade
 offset`) and reports each pair of links whose collision shapes interpenetrate by
 `min-depth` millimetres or more (default 1 mm), once per pair, on the second link's
 deepest `<collision>`, with the depth. Links welded into one rigid body by `fixed`
-joints, the parent and child of one joint, and pairs an SRDF disables
-(`<disable_collisions>`) or a `<drake:collision_filter_group>` ignores are not pairs.
+joints are never a pair. The parent and child of one joint, and a pair the SRDF disables
+(`<disable_collisions>`, read by MoveIt only), are reported only when a selected target
+collides them all the same (MuJoCo collides the root's body with its children, and ignores
+the SRDF).
 
 Boxes, spheres, cylinders and capsules are taken as written; a mesh as its convex hull
 (what MuJoCo, PyBullet and Drake collide with; the message says so). The depth is
@@ -18,37 +20,52 @@ at most info. Meshes need trimesh; without it, or when a mesh cannot be read (C0
 its collision is left out.
 
 The severity follows the selected targets (`--target`): a warning when one of them
-collides the pair at the start, else info.
+collides the pair at the start, else info. Each engine's contact filtering was read in its
+source and checked against its contacts at rest (`bench/contact_agreement.py`: MuJoCo's
+`data.contact` after `mj_forward` at `qpos0`, Drake's `ComputePointPairPenetration()` at
+the default context, PyBullet's `getContactPoints` after `performCollisionDetection`):
 
-- MuJoCo (observed, 4.0): every geom has `contype = conaffinity = 1`, so all bodies
-  collide except a parent and its child (`filterparent`); the URDF import fuses links
-  welded by fixed joints (`fusestatic`), so a link fixed to the parent of the other link
-  counts as its parent. The import also welds the root link to the world, which is never
-  filtered against its children: a pair of the root's body and a link welded to its child
-  collides while the base is fixed and is filtered once a free joint is added (a legged
-  robot): info. (The root's own children collide with it too while it is welded; those
-  adjacent pairs are never reported.) At t = 0 the contact forces push the bodies apart:
-  in a test arm a joint swung by a radian in 0.4 s with no command. MuJoCo does not read
-  the SRDF; a pair the SRDF disables is skipped all the same, as declared by design.
-- Drake (observed, 1.51): `MultibodyPlant` filters only bodies joined by a joint and
-  bodies welded together; a link fixed to a neighbour's parent still collides with it
-  (warning, also for those "body-adjacent" pairs).
-- Gazebo Classic and Gazebo Sim: links of one model collide only with
-  `<self_collide>` (default false: `<selfCollide>true</selfCollide>` in a
-  `<gazebo reference>`, or in the robot-level `<gazebo>`); warning then, for primitives
-  (Gazebo collides the triangles of a mesh, not its hull: info).
+- MuJoCo (observed, 4.0): the URDF import gives every collision `contype = conaffinity
+  = 1` (a URDF cannot change them); bodies are filtered when welded together (`fixed`
+  joints; `fusestatic`, on for URDF, fuses them), when both have no degree of freedom, or
+  when one is the other's parent, unless either is the world body. The import welds the
+  root link to the world (fused into it): the root's body collides with its children,
+  joint-adjacent or not (FANUC's `link_1` against `base_link`, 5 to 79 mm in 14 of 33
+  arms; Solo12's shoulders, 44 mm). `<mujoco><option><flag filterparent="disable"/>` in
+  the URDF collides parents and children too, `contact="disable"` nothing;
+  `<compiler fusestatic="false">` keeps the root's body, still welded to the world. MuJoCo
+  ignores the SRDF and `<drake:collision_filter_group>`: a pair either one disables is
+  still reported for it (the message says so). At t = 0 the contact forces push the bodies
+  apart: in a test arm a joint swung by a radian in 0.4 s with no command.
+- Drake (observed, 1.51): `MultibodyPlant` filters bodies welded together and the two
+  links of each joint, except a joint from `world` or a `floating` one; a link fixed to a
+  neighbour's parent still collides with it. A `<drake:collision_filter_group>` filters its
+  pairs for Drake only (only the `drake:` spelling: Drake reads no unprefixed
+  `<collision_filter_group>`, as in old iiwa files, and then collides the pair).
+- Gazebo Classic and Gazebo Sim: links connected by a joint (after fixed-joint lumping)
+  never collide; others only with `<self_collide>`. Classic takes a link's own
+  (`<selfCollide>` or `<self_collide>` in its `<gazebo reference>`, moved to the lumped
+  body by sdformat) else the model's; Gazebo Sim only the model's (gz-physics). The
+  model's is `<self_collide>` in the robot-level `<gazebo>`: sdformat 12 drops a
+  robot-level `<selfCollide>` (observed). Warning then, for primitives (Gazebo collides the
+  triangles of a mesh, not its hull: info).
 - ROS (MoveIt): the planning scene reports the start state in collision until the pair
   is disabled; the Setup Assistant disables pairs in collision at the default pose
   ("Default") and adjacent ones. Warning when an SRDF is found (it does not disable the
   pair), info otherwise; info for meshes (MoveIt checks the triangles, not the hull).
-- PyBullet: self-collision is off unless `URDF_USE_SELF_COLLISION` (observed, 3.2.7:
-  then parent-child pairs only are excluded); Isaac Sim's importer has
+- PyBullet (observed, 3.2.7): no self-collision unless `URDF_USE_SELF_COLLISION`; with it
+  every pair but a parent and child of one joint collides (`_EXCLUDE_ALL_PARENTS` leaves
+  out every ancestor, `_INCLUDE_PARENT` adds parents). Info. Isaac Sim's importer has
   `self_collision` off by default; Pinocchio collides only the pairs a program adds.
-  Info.
 
-Cross-checked against MuJoCo's contacts at `qpos0` on corpus robots (mir100, solo12,
-abb_irb2400, unitree_z1, baxter, atlas, pal_hey5): the same pairs and the same depths to
-0.1 mm, meshes included (MuJoCo also collides convex hulls).
+Cross-checked on 84 files (the 36 corpus robots, 33 ros-industrial FANUC arms, Drake's
+iiwa14 spheres, the fixtures and tests): every pair an engine collides at rest by 1.5 mm or
+more is reported for its target, and every pair reported for it is one it collides: MuJoCo
+82 of 82 body pairs, meshes included (MuJoCo also collides convex hulls); Drake 71 of 71
+(STL and Collada meshes converted to OBJ, which Drake 1.51 requires of collision meshes,
+C009); PyBullet 105 of 105 with `URDF_USE_SELF_COLLISION` (its depths exceed the others' by
+up to 2 mm: it pads each mesh hull by a 1 mm margin; pairs of links welded together, which
+it collides too, are left out: no motion follows). Depths agree to 0.1 mm for primitives.
 
 At most 5,000 candidate pairs (overlapping bounding boxes) are measured: a model whose
 links pile up at the pose (hundreds at one place) gets one info finding saying how many
@@ -62,9 +79,10 @@ finds the start state in collision and refuses to plan
 (Universal_Robots_ROS2_Driver#413).
 
 ## How to fix
-If the overlap is by design (a cover, a finger inside a palm), disable the pair:
-`<disable_collisions link1="a" link2="b" reason="Default"/>` in the SRDF for MoveIt,
-`<contact><exclude body1="a" body2="b"/></contact>` in MuJoCo, a
+If the overlap is by design (a cover, a finger inside a palm, a base hull around the
+first joint), disable the pair: `<disable_collisions link1="a" link2="b"
+reason="Default"/>` in the SRDF for MoveIt, `<contact><exclude body1="a" body2="b"/>
+</contact>` in the MJCF for MuJoCo (the root's body is `world`), a
 `<drake:collision_filter_group>` for Drake. Otherwise move or shrink the collision
 geometry so the links only touch at the zero pose. Raise `min-depth` to ignore small
 overlaps:
@@ -82,20 +100,23 @@ from typing import TYPE_CHECKING, Any
 
 from urdflint.engine.registry import Hit, rule
 from urdflint.model import targets as T
-from urdflint.model.document import Document, children, local_tag
+from urdflint.model.document import Document
 from urdflint.model.effects import Effect, kept
 from urdflint.model.finding import Severity
 
 if TYPE_CHECKING:
+    from urdflint.sources.contact_filters import Filters
     from urdflint.sources.self_collision import Overlap
 
 PUSHED = "collides the two bodies: the contact pushes them apart at the first step"
 WORLD = (
-    "collides them while the root is welded to the world, as the URDF import does: the world "
-    "body is not filtered against its children (a free joint on the root filters the pair)"
+    "collides them: its URDF import welds the root link to the world body, which it never "
+    "filters against the bodies below (a free joint on the root, in MJCF, filters the pair)"
 )
+ROOT_NOTE = "MuJoCo welds the root link to the world, never filtered against its children"
+SELF_COLLIDE = PUSHED + " (<self_collide>)"
+PYBULLET = "collides them with URDF_USE_SELF_COLLISION (off by default)"
 PLANNING = "reports the start state in collision until the SRDF disables the pair"
-TRUE = ("true", "1")
 
 
 @rule(
@@ -111,27 +132,81 @@ def check(doc: Document, opts: dict[str, Any]) -> Iterator[Hit]:
     from urdflint.sources.self_collision import overlaps  # numpy: imported when it runs
 
     min_depth = max(float(opts["min-depth"]), 0.0) / 1000.0
-    disabled = srdf_pairs(doc)
-    filtered = drake_filtered(doc)
-    found, method = overlaps(doc, max(min_depth, 1e-9), disabled | filtered)
+    pairs = Pairs(doc)
+    found, method = overlaps(doc, max(min_depth, 1e-9), pairs.wanted)
     if "candidate pairs" in method:
         yield Hit(None, f"self-collision: {method.split('; ', 1)[1]}", severity=Severity.INFO)
     if not found:
         return
     pose = _pose(doc)
-    colliding = self_colliding(doc)
     for overlap in found:
-        effects = target_effects(doc, overlap, bool(disabled), colliding)
+        effects = pairs.effects(overlap.first, overlap.second, overlap.mesh)
         severity = max((e.level for e in effects.values()), default=Severity.INFO)
         if overlap.approximate:
             severity = Severity.INFO
         yield Hit(
             overlap.element,
-            _message(overlap, pose, method, effects),
-            fix=_fix(overlap),
+            _message(overlap, pose, effects, pairs),
+            fix=_fix(overlap, pairs.filters),
             severity=severity,
             effects={t: e for t, e in effects.items() if e.level is Severity.WARNING} or None,
         )
+
+
+class Pairs:
+    """The link pairs C013 measures, and what each selected target does with one."""
+
+    def __init__(self, doc: Document) -> None:
+        from urdflint.sources.contact_filters import Filters
+
+        self.doc = doc
+        self.filters = Filters(doc)
+        self.disabled = srdf_pairs(doc)
+
+    def wanted(self, a: str, b: str) -> bool:
+        """Links of two rigid bodies: any pair, but one joined by a joint or disabled by the
+        SRDF only when a selected target collides it all the same."""
+        relation = self.filters.relation(a, b)
+        if relation.same_body:
+            return False
+        if relation.joint is None and frozenset((a, b)) not in self.disabled:
+            return True
+        return bool(self.effects(a, b, False))
+
+    def effects(self, a: str, b: str, mesh: bool) -> dict[str, Effect]:
+        """What each selected target does with the pair: a warning when it collides the two
+        links as it loads the model, info when only an option makes it collide them."""
+        found: dict[str, Effect] = {}
+        warn, info = Severity.WARNING, Severity.INFO
+        filters = self.filters
+        relation = filters.relation(a, b)
+        disabled = frozenset((a, b)) in self.disabled
+        for target in T.ordered(self.doc.targets):
+            if target == "mujoco" and filters.mujoco(relation):
+                found[target] = kept(WORLD if relation.roots else PUSHED, warn)
+            elif target == "drake" and filters.drake(a, b, relation):
+                found[target] = kept(PUSHED, warn)
+            elif target in T.GAZEBO and filters.gazebo(target, a, b, relation):
+                found[target] = kept(SELF_COLLIDE, info if mesh else warn)
+            elif target == "ros" and not (relation.body_adjacent or disabled):
+                found[target] = kept(PLANNING, warn if self.disabled and not mesh else info)
+            elif target == "pybullet" and filters.pybullet(relation):
+                found[target] = kept(PYBULLET, info)
+        return found
+
+    def notes(self, a: str, b: str, effects: dict[str, Effect]) -> list[str]:
+        """Why a pair that looks filtered is collided all the same."""
+        found = []
+        mujoco = effects.get("mujoco")
+        if (
+            mujoco is not None
+            and mujoco.detail == WORLD
+            and self.filters.relation(a, b).body_adjacent
+        ):
+            found.append(ROOT_NOTE)
+        if frozenset((a, b)) in self.disabled and any(t != "ros" for t in effects):
+            found.append("the SRDF disables the pair for MoveIt only")
+        return found
 
 
 def _pose(doc: Document) -> str:
@@ -144,7 +219,7 @@ def _pose(doc: Document) -> str:
     return f"at the configuration {shown}"
 
 
-def _message(overlap: Overlap, pose: str, method: str, effects: dict[str, Effect]) -> str:
+def _message(overlap: Overlap, pose: str, effects: dict[str, Effect], pairs: Pairs) -> str:
     text = (
         f"collision geometry of links '{overlap.first}' and '{overlap.second}' overlaps by "
         f"{overlap.depth * 1000:.1f} mm {pose}"
@@ -160,38 +235,18 @@ def _message(overlap: Overlap, pose: str, method: str, effects: dict[str, Effect
     if warned:
         verb = "collides" if len(warned) == 1 else "collide"
         text += f"; {' and '.join(warned)} {verb} them from the start"
-    return text
+    why = pairs.notes(overlap.first, overlap.second, effects)
+    return text + (f" ({'; '.join(why)})" if why else "")
 
 
-def _fix(overlap: Overlap) -> str:
+def _fix(overlap: Overlap, filters: Filters) -> str:
     pair = f'link1="{overlap.first}" link2="{overlap.second}"'
+    first, second = (filters.mujoco_body(link) for link in (overlap.first, overlap.second))
     return (
         f"If the overlap is by design, disable the pair in the SRDF: <disable_collisions {pair} "
-        f'reason="Default"/> (MuJoCo: <exclude body1="{overlap.first}" '
-        f'body2="{overlap.second}"/>); otherwise move or shrink the collision geometry.'
+        f'reason="Default"/> (MuJoCo: <exclude body1="{first}" body2="{second}"/>); otherwise '
+        "move or shrink the collision geometry."
     )
-
-
-def target_effects(
-    doc: Document, overlap: Overlap, srdf: bool, colliding: dict[str, bool]
-) -> dict[str, Effect]:
-    """What each selected target does with the pair (warnings) or may do (info)."""
-    found: dict[str, Effect] = {}
-    warn, info = Severity.WARNING, Severity.INFO
-    model = colliding.get("", False)
-    gazebo = any(colliding.get(link, model) for link in (overlap.first, overlap.second))
-    for target in T.ordered(doc.targets):
-        if target == "drake" or (target == "mujoco" and not overlap.body_adjacent):
-            found[target] = kept(PUSHED, warn)
-        elif target == "mujoco" and overlap.root:
-            found[target] = kept(WORLD, info)
-        elif target in T.GAZEBO and gazebo and not overlap.body_adjacent:
-            found[target] = kept(PUSHED + " (<self_collide>)", info if overlap.mesh else warn)
-        elif target == "ros" and not overlap.body_adjacent:
-            found[target] = kept(PLANNING, warn if srdf and not overlap.mesh else info)
-        elif target == "pybullet":
-            found[target] = kept("collides them with URDF_USE_SELF_COLLISION", info)
-    return found
 
 
 def srdf_pairs(doc: Document) -> set[frozenset[str]]:
@@ -204,40 +259,3 @@ def srdf_pairs(doc: Document) -> set[frozenset[str]]:
         return set(disabled_pairs(doc))
     except Exception:  # an unreadable SRDF: the M rules report it
         return set()
-
-
-def self_colliding(doc: Document) -> dict[str, bool]:
-    """`<selfCollide>`/`<self_collide>` of each `<gazebo reference>` link; "" for the model
-    (a robot-level `<gazebo>`): a link without its own value takes the model's."""
-    found: dict[str, bool] = {}
-    for gazebo in doc.gazebo:
-        for child in children(gazebo):
-            if local_tag(child) in ("selfCollide", "self_collide"):
-                found[gazebo.get("reference") or ""] = (child.text or "").strip().lower() in TRUE
-    return found
-
-
-def _local(el: Any) -> str:
-    """``member`` for ``<drake:member>`` (with or without a declared namespace)."""
-    return local_tag(el).rpartition(":")[2]
-
-
-def drake_filtered(doc: Document) -> set[frozenset[str]]:
-    """Link pairs a `<drake:collision_filter_group>` ignores."""
-    members: dict[str, set[str]] = {}
-    ignores: dict[str, set[str]] = {}
-    for group in doc.robot:
-        if not isinstance(group.tag, str) or _local(group) != "collision_filter_group":
-            continue
-        name = group.get("name") or ""
-        for child in children(group):
-            if _local(child) == "member" and child.get("link"):
-                members.setdefault(name, set()).add(str(child.get("link")))
-            elif _local(child) == "ignored_collision_filter_group" and child.get("name"):
-                ignores.setdefault(name, set()).add(str(child.get("name")))
-    pairs: set[frozenset[str]] = set()
-    for name, others in ignores.items():
-        for other in others:
-            for a in members.get(name, ()):
-                pairs.update(frozenset((a, b)) for b in members.get(other, ()) if a != b)
-    return pairs

@@ -47,7 +47,9 @@ I013's (a massless root costs Gazebo the whole model).
 - MuJoCo (4.0, observed) gives a moving link without `<inertial>` the mass of
   its collision geometry at 1000 kg/m³ (a 10 cm cube weighs 1 kg), which is
   rarely the part's; with no collision geometry it refuses the model: "mass and
-  inertia of moving bodies must be larger than mjMINVAL".
+  inertia of moving bodies must be larger than mjMINVAL". A collision mesh it computes
+  no volume for ("mesh volume is too small", an OBJ whose first object is flat) it
+  refuses with or without an `<inertial>`: C018.
 - Pinocchio (4.1, observed) loads a massless moving link with a zero inertia:
   the joint-space mass matrix is singular and `aba` returns NaN.
 - PyBullet (3.2.7, observed) warns "No inertial data for link, using mass=1,

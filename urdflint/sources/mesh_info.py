@@ -128,6 +128,17 @@ class MeshInfo:
         raw = self._memo["hull"]
         return None if raw is None else np.frombuffer(raw, dtype=np.float64).reshape(-1, 3)
 
+    def mujoco(self, scale: Vec) -> Any:
+        """The mesh as MuJoCo compiles it at ``scale`` (this mesh's:
+        :class:`urdflint.sources.mujoco_mesh.Compiled`), ``None`` when it is not read here."""
+        from urdflint.sources.mujoco_mesh import Compiled, compile_mesh
+
+        if "mujoco" not in self._memo:
+            found = compile_mesh(self.path, scale) if self.ok else None
+            self._remember("mujoco", None if found is None else list(_fields(found)))
+        raw = self._memo["mujoco"]
+        return None if raw is None else Compiled(*raw)
+
     def inertia(self, mass: float) -> tuple[Mat, str] | None:
         """Inertia tensor about the centre of mass at ``mass`` kg, and which solid gave it."""
         solid = self.solid()
@@ -154,6 +165,10 @@ def from_facts(path: Path, found: dict[str, Any], loader: Any, stored: Any) -> M
     values = {name: found[name] for name in FACTS}
     memo = dict(found.get("memo") or {})
     return MeshInfo(path, **values, _memo=memo, _loader=loader, _stored=stored)
+
+
+def _fields(found: Any) -> tuple[Any, ...]:
+    return tuple(getattr(found, name) for name in found.__slots__)
 
 
 def vec(values: Any) -> Vec:

@@ -1,4 +1,4 @@
-"""Collision geometry of non-adjacent links that overlaps at one configuration (C013).
+"""Collision geometry of two links that overlaps at one configuration (C013).
 
 Forward kinematics of the link frames at the zero configuration, or at ``expect.q``
 (``--q JOINT=VALUE``; a mimic joint follows its leader: ``multiplier * leader + offset``);
@@ -6,15 +6,14 @@ every ``<collision>`` placed in the world (primitives as written, meshes as thei
 hull, read once through the run's mesh cache); a broad phase over the world bounding
 boxes; the depth of each remaining pair from :mod:`urdflint.sources.self_collision_depth`.
 
-Pairs are links that are not welded into one rigid body by ``fixed`` joints and are not
-the parent and child of one joint. ``body_adjacent`` marks the pairs whose rigid bodies
-are parent and child once fixed joints are fused (MuJoCo's ``fusestatic``, Gazebo's
-lumping, the MoveIt Setup Assistant's "Adjacent"): those targets never collide them.
+Which link pairs are measured is the caller's choice (``keep``): C013 keeps those some
+engine collides (:mod:`urdflint.sources.contact_filters`).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from typing import TYPE_CHECKING, Any
@@ -46,10 +45,8 @@ class Overlap:
     second: str
     depth: float
     element: Any
-    body_adjacent: bool
     approximate: bool
     mesh: bool
-    root: bool = False  # one of the two rigid bodies is a root's (MuJoCo welds it to the world)
 
 
 # -- configuration and forward kinematics ---------------------------------------------------
@@ -231,39 +228,10 @@ def _hull(
 # -- pairs ------------------------------------------------------------------------------------
 
 
-def bodies(doc: Document) -> dict[str, int]:
-    """Each link's rigid body: links joined by ``fixed`` joints share a number."""
-    parent = {name: name for name in doc.link_map}
-
-    def find(name: str) -> str:
-        while parent[name] != name:
-            parent[name] = parent[parent[name]]
-            name = parent[name]
-        return name
-
-    for joint in doc.joints:
-        if joint.type == "fixed" and joint.parent in parent and joint.child in parent:
-            parent[find(str(joint.child))] = find(str(joint.parent))
-    numbers: dict[str, int] = {}
-    return {name: numbers.setdefault(find(name), len(numbers)) for name in doc.link_map}
-
-
-def exempt_pairs(
-    doc: Document, body: dict[str, int]
-) -> tuple[set[frozenset[str]], set[frozenset[int]]]:
-    """Link pairs of one joint, and body pairs of one (moving) joint."""
-    links: set[frozenset[str]] = set()
-    joined: set[frozenset[int]] = set()
-    for joint in doc.joints:
-        if joint.parent in body and joint.child in body:
-            links.add(frozenset((str(joint.parent), str(joint.child))))
-            joined.add(frozenset((body[str(joint.parent)], body[str(joint.child)])))
-    return links, joined
-
-
 def candidates(shapes: list[Placed], margin: float) -> list[tuple[int, int]]:
-    """Index pairs whose world boxes overlap by ``margin`` or more on every axis: a pair that
-    interpenetrates by ``margin`` has such boxes.
+    """Index pairs whose world boxes need a move of ``margin`` or more along every axis to
+    come apart (the shorter way out, so a thin plate deep inside a box counts): a pair of
+    shapes that interpenetrates by ``margin`` has such boxes.
 
     Sweep and prune, vectorised: boxes sorted by their low end along the axis they spread
     most on; each box is tested at once against the block of later boxes that start before
@@ -312,27 +280,26 @@ def _block_pairs(
     lo: np.ndarray, hi: np.ndarray, counts: np.ndarray, p: int, q: int, margin: float
 ) -> tuple[np.ndarray, np.ndarray]:
     """The pairs ``(i, j)`` (sorted positions) of boxes ``p <= i < q`` and the boxes of their
-    blocks (``i < j <= i + counts[i]``) that overlap by ``margin`` on every axis."""
+    blocks (``i < j <= i + counts[i]``) that need ``margin`` on every axis to come apart."""
     run = counts[p:q]
     rows = np.repeat(np.arange(p, q), run)
     offsets = np.arange(len(rows)) - np.repeat(np.cumsum(run) - run, run)  # 0, 1.. per row
     cols = rows + 1 + offsets
-    reach = np.minimum(hi[rows], hi[cols]) - np.maximum(lo[rows], lo[cols])
+    reach = np.minimum(hi[rows] - lo[cols], hi[cols] - lo[rows])  # the shorter way apart
     keep = (reach >= margin).all(axis=1)
     return rows[keep], cols[keep]
 
 
 def overlaps(
-    doc: Document, min_depth: float, disabled: set[frozenset[str]]
+    doc: Document, min_depth: float, keep: Callable[[str, str], bool]
 ) -> tuple[list[Overlap], str]:
-    """The overlapping link pairs (deepest contact per pair) and the method used."""
+    """The overlapping link pairs that ``keep(first, second)`` accepts (deepest contact per
+    pair), and the method used."""
     poses = link_poses(doc, joint_values(doc))
     shapes = place(doc, poses, {})
-    body = bodies(doc)
-    one_joint, joined = exempt_pairs(doc, body)
     depth_of, method = depth_function()
     order = {name: i for i, name in enumerate(doc.link_map)}
-    roots = {body[name] for name in doc.graph.roots}
+    kept: dict[frozenset[str], bool] = {}
     best: dict[frozenset[str], Overlap] = {}
     pairs = list(candidates(shapes, min_depth))
     if len(pairs) > MAX_PAIRS:  # links piled up at the pose: bound the narrow phase
@@ -341,19 +308,16 @@ def overlaps(
     for i, j in pairs:
         a, b = sorted((shapes[i], shapes[j]), key=lambda s: order[s.link])
         pair = frozenset((a.link, b.link))
-        if (
-            a.link == b.link
-            or body[a.link] == body[b.link]
-            or pair in one_joint
-            or pair in disabled
-        ):
+        if a.link == b.link:
+            continue
+        if pair not in kept:
+            kept[pair] = keep(a.link, b.link)
+        if not kept[pair]:
             continue
         depth, approximate = depth_of(a, b)
         if depth < min_depth or (pair in best and best[pair].depth >= depth):
             continue
         mesh = "mesh" in (a.kind, b.kind)
-        adjacent = frozenset((body[a.link], body[b.link])) in joined
-        root = bool({body[a.link], body[b.link]} & roots)
-        best[pair] = Overlap(a.link, b.link, depth, b.owner, adjacent, approximate, mesh, root)
+        best[pair] = Overlap(a.link, b.link, depth, b.owner, approximate, mesh)
     found = sorted(best.values(), key=lambda o: (order[o.second], order[o.first]))
     return found, method
