@@ -28,18 +28,7 @@ def add_parsers(sub: Any) -> None:
 def run_rules(args: argparse.Namespace) -> int:
     rules = registry.load_rules()
     if args.format == "json":
-        data = [
-            {
-                "code": r.code,
-                "name": r.name,
-                "severity": str(r.severity),
-                "family": registry.FAMILIES[r.family],
-                "summary": r.summary,
-                "needs": list(r.needs),
-                "options": dict(r.options),
-            }
-            for r in sorted(rules.values(), key=lambda r: r.code)
-        ]
+        data = registry.catalogue()
         import json
 
         print(json.dumps({"version": 1, "rules": data}, indent=2))

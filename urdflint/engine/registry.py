@@ -245,3 +245,19 @@ def load_rules(families: set[str] | frozenset[str] | None = None) -> dict[str, R
                 importlib.import_module(f"{package}.{catalogue.PACKAGES[letter]}")
                 _loaded.add(letter)
     return RULES
+
+
+def catalogue() -> list[dict[str, Any]]:
+    """Every rule as ``urdflint rules --format json`` (and the MCP catalogue) lists it."""
+    return [
+        {
+            "code": r.code,
+            "name": r.name,
+            "severity": str(r.severity),
+            "family": FAMILIES[r.family],
+            "summary": r.summary,
+            "needs": list(r.needs),
+            "options": dict(r.options),
+        }
+        for r in sorted(load_rules().values(), key=lambda r: r.code)
+    ]

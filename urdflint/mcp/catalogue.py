@@ -50,15 +50,4 @@ def rules() -> list[dict[str, Any]]:
     """The rules as ``urdflint rules --format json`` lists them."""
     from urdflint.engine import registry
 
-    return [
-        {
-            "code": r.code,
-            "name": r.name,
-            "severity": str(r.severity),
-            "family": registry.FAMILIES[r.family],
-            "summary": r.summary,
-            "needs": list(r.needs),
-            "options": dict(r.options),
-        }
-        for r in sorted(registry.load_rules().values(), key=lambda r: r.code)
-    ]
+    return registry.catalogue()
