@@ -7,6 +7,9 @@ runs each one in its own process (``python -m urdflint.engines.probe``) with an
 address-space limit and a timeout; while a job confirms, :func:`confined` adds what a
 server needs around it:
 
+- the probes are new processes, ended with the job (``warm=False``): a warm probe, kept
+  from one model to the next as the command line keeps it, would outlive the job's
+  folder and its fence, and serve the next job's upload after this one's;
 - the model the engines read is written inside the job's folder (``runner`` makes its
   temporary folder in ``tempfile.tempdir``, which :func:`~.fence.fenced` points there),
   and every ``filename``/``file`` attribute in it that does not name a file of the upload
@@ -117,7 +120,7 @@ def confined(root: Path, timeout: float) -> Iterator[Confinement]:
         return path
 
     def timed_confirm(doc: Any, engines: tuple[str, ...], timeout: float = runner.TIMEOUT) -> Any:
-        return confirm(doc, engines, job.budget(timeout))
+        return confirm(doc, engines, job.budget(timeout), warm=False)
 
     saved = FENCE.commands
     runner.write_model, runner.confirm = confined_model, timed_confirm

@@ -18,7 +18,7 @@ import pytest
 from tests.conftest import CORPUS, FIXTURES, ROOT, needs_corpus
 from tests.helpers import lint_file
 from urdflint.engine import config, linter
-from urdflint.engines import runner
+from urdflint.engines import runner, warm
 
 pytestmark = pytest.mark.slow  # the real engines
 
@@ -108,6 +108,7 @@ def test_an_engine_that_is_not_installed_is_one_info_note(monkeypatch) -> None:
 
 def test_a_probe_that_times_out_is_a_crash(monkeypatch, tmp_path: Path) -> None:
     monkeypatch.setattr(runner, "installed", lambda engine: True)
+    warm.close_all()  # a new probe: its start (Drake's import) counts in the timeout
     doc = linter.load(MODELS / "good_arm.urdf", "good_arm.urdf", config.Settings())
     path = runner.write_model(doc, tmp_path)
     outcome = runner.run(doc, "drake", path, timeout=0.001)

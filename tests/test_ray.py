@@ -172,11 +172,10 @@ def _running(title: str) -> list[int]:
     return found
 
 
-def test_confirm_runs_each_engine_as_a_task_with_the_local_verdict(
-    head: str, tmp_path: Path
-) -> None:
-    """--confirm: (file, engine) pairs on Ray give the findings a local run gives,
-    E005 included (PyBullet crashes on the E005 fixture: tried twice, then reported)."""
+def test_confirm_on_ray_gives_the_local_verdict(head: str, tmp_path: Path) -> None:
+    """--confirm on Ray (engines in warm probes beside the workers) gives the findings a
+    local run gives, E005 included (PyBullet crashes on the E005 fixture: tried twice,
+    then reported)."""
     from urdflint.engines import runner
 
     engines = [e for e in ("mujoco", "pybullet") if runner.installed(e)]

@@ -1,14 +1,15 @@
 """``--executor ray``: a run's files as tasks on a Ray cluster.
 
-- Without ``--confirm``, files go in chunks (up to :data:`CHUNK` files per task, small
-  enough that every CPU gets several tasks): a task costs about a millisecond of Ray's
-  time, a small URDF about as much to check.
-- With ``--confirm``, each file is three kinds of task: one reads it and writes the model
-  as the engines read it (:func:`urdflint.engines.runner.prepared`); one per engine loads
-  that model in the engine's own probe process (:func:`~urdflint.engines.runner.probe`);
-  the last lints the file with the engines' answers (the E rules read them, no engine is
-  started again). An engine's segfault costs one task: it is tried once more, then
-  reported (E005) as in a local run.
+- Files go in chunks (up to :data:`CHUNK` files per task, small enough that every CPU gets
+  several tasks): a task costs about a millisecond of Ray's time, a small URDF about as
+  much to check. Each task lints its files exactly as a ``--jobs`` worker does.
+- With ``--confirm``, each engine runs in its own probe process beside the worker
+  (:mod:`urdflint.engines.warm`), kept warm from one file to the next, as in a local run:
+  an engine's segfault costs its probe process and that one load, which is tried once
+  more in a new process and then reported (E005). One task per (file, engine) pair, the
+  model handed from task to task, was built and measured first: 2.3 times slower (each
+  file read twice, 4 tasks per file, and a worker per concurrent probe, each with its
+  own engines to import).
 - A task whose worker process dies is retried once by Ray. A chunk lost twice is split
   into single files, each tried again; a file whose task is lost twice more is reported
   as an error of the run (exit 2), never silently left out.
@@ -35,7 +36,7 @@ from typing import Any
 from urdflint.cli import parallel
 from urdflint.cli.common import UsageError
 
-CHUNK = 16  # most files per task without --confirm
+CHUNK = 16  # most files per task
 TASKS_PER_CPU = 8  # chunks are small enough for this many tasks per CPU
 IN_FLIGHT_PER_CPU = 4  # tasks submitted ahead of the finished ones, per CPU
 
@@ -117,22 +118,14 @@ def run(
     remote = _remotes(ray)
     progress = parallel.Progress(len(tasks), sys.stderr)
     try:
-        if any(task.settings.confirm for task in tasks):
-            yield from _confirmed(ray, remote, shared, tasks, cpus, progress)
-        else:
-            yield from _chunked(ray, remote, shared, tasks, cpus, progress)
+        yield from _chunked(ray, remote, shared, tasks, cpus, progress)
     finally:
         progress.close()
 
 
 def _remotes(ray: Any) -> dict[str, Any]:
     """The task functions (Ray retries each once when its worker dies)."""
-    return {
-        "lint": ray.remote(max_retries=1)(_lint_chunk),
-        "prepare": ray.remote(max_retries=1)(_prepare),
-        "probe": ray.remote(max_retries=1, num_cpus=0.5)(_probe),
-        "given": ray.remote(max_retries=1)(_lint_given),
-    }
+    return {"lint": ray.remote(max_retries=1)(_lint_chunk)}
 
 
 def _chunked(
@@ -163,68 +156,6 @@ def _chunked(
                 continue
             outcomes = [_lost(tasks[chunk[0]], exc)]
         for index, outcome in zip(chunk, outcomes, strict=True):
-            progress.step()
-            yield index, outcome
-
-
-def _confirmed(
-    ray: Any,
-    remote: dict[str, Any],
-    shared: Any,
-    tasks: Sequence[parallel.Task],
-    cpus: int,
-    progress: parallel.Progress,
-) -> Iterator[tuple[int, parallel.Outcome]]:
-    """Prepare, probe per engine, lint with the answers: per file, as each step finishes."""
-    waiting = list(reversed(range(len(tasks))))
-    running: dict[Any, tuple[str, int, str | None, int]] = {}  # ref -> (step, file, engine, try)
-    answers: dict[int, dict[str, Any]] = {}
-    models: dict[int, Any] = {}
-    limit = cpus * IN_FLIGHT_PER_CPU
-    files_running = 0
-    while waiting or running:
-        while waiting and files_running < limit:
-            index = waiting.pop()
-            files_running += 1
-            if not tasks[index].settings.confirm:  # settings without engines: lint only
-                running[remote["given"].remote(shared, tasks[index], {})] = ("lint", index, None, 0)
-                continue
-            running[remote["prepare"].remote(shared, tasks[index])] = ("prepare", index, None, 0)
-        (ref,), _ = ray.wait(list(running), num_returns=1)
-        step, index, engine, tries = running.pop(ref)
-        task = tasks[index]
-        try:
-            value = ray.get(ref)
-        except Exception as exc:  # (the worker died twice)
-            value = exc
-        if step == "prepare":
-            if isinstance(value, Exception) or value is None:  # no model: lint it as it is
-                running[remote["given"].remote(shared, task, {})] = ("lint", index, None, 0)
-                continue
-            models[index] = ray.put(value)
-            answers[index] = {}
-            for name in task.settings.confirm:
-                ref = remote["probe"].remote(name, models[index])
-                running[ref] = ("probe", index, name, 0)
-        elif step == "probe":
-            assert engine is not None
-            from urdflint.engines import runner
-
-            if isinstance(value, Exception) or runner.died(value):
-                if tries == 0:  # a crash or a lost worker: once more
-                    ref = remote["probe"].remote(engine, models[index])
-                    running[ref] = ("probe", index, engine, 1)
-                    continue
-                if isinstance(value, Exception):
-                    value = runner.Outcome(engine, crash=f"its Ray worker was lost twice ({value})")
-            answers[index][engine] = value
-            if len(answers[index]) == len(task.settings.confirm):
-                models.pop(index, None)
-                ref = remote["given"].remote(shared, task, answers.pop(index))
-                running[ref] = ("lint", index, None, 0)
-        else:
-            files_running -= 1
-            outcome = _lost(task, value) if isinstance(value, Exception) else value
             progress.step()
             yield index, outcome
 
@@ -276,37 +207,3 @@ def _lint_chunk(shared: Any, tasks: list[parallel.Task]) -> list[parallel.Outcom
     context, flags, work, cwd = _shared(shared)
     _enter(cwd)
     return [work(task, context, flags) for task in tasks]
-
-
-def _prepare(shared: Any, task: parallel.Task) -> tuple[str, str] | None:
-    """The model as the engines read it (the file read and expanded here)."""
-    from pathlib import Path
-
-    from urdflint.engine import linter
-    from urdflint.engines import runner
-
-    context, _, _, cwd = _shared(shared)
-    _enter(cwd)
-    if task.data is not None:
-        return None  # stdin: its lint task starts the engines itself
-    try:
-        doc = linter.load(Path(task.name), task.shown, task.settings, context)
-        return runner.prepared(doc)
-    except Exception:  # (unreadable or broken: the lint task reports it)
-        return None
-
-
-def _probe(engine: str, model: tuple[str, str]) -> Any:
-    from urdflint.engines import runner
-
-    name, text = model
-    return runner.probe(engine, name, text)
-
-
-def _lint_given(shared: Any, task: parallel.Task, answers: dict[str, Any]) -> parallel.Outcome:
-    from urdflint.engines import runner
-
-    context, flags, work, cwd = _shared(shared)
-    _enter(cwd)
-    with runner.answered(answers):
-        return work(task, context, flags)  # type: ignore[no-any-return]

@@ -9,6 +9,9 @@ per file to stdout, flushed, ``{"path", "engine", "ok", "error", "bodies", "join
 where the parent reads it: before each file the probe writes a marker line, ``MARK INDEX``
 (:data:`MARK`), so what the engine printed is attributable to its file, and after each file
 it echoes (and deletes) the ``MUJOCO_LOG.TXT`` MuJoCo writes in the working folder.
+``python -m urdflint.engines.probe --serve ENGINE MEMORY`` reads the paths from stdin
+instead, one JSON string per line, and writes an end marker (:data:`END`) to stderr after
+each file, before its report: a warm probe (:mod:`urdflint.engines.warm`).
 
 ``bodies`` are the link names the engine kept (MuJoCo bodies, PyBullet links, Drake bodies,
 Pinocchio ``BODY`` frames). ``limits`` maps each revolute or prismatic joint to ``[type,
@@ -172,6 +175,7 @@ def limit_memory(limit: int) -> None:
 
 
 MARK = "@@urdflint-probe-file"  # stderr: what follows, up to the next mark, is about file N
+END = "@@urdflint-probe-done"  # --serve, stderr: model N is done (its report follows)
 MUJOCO_LOG = "MUJOCO_LOG.TXT"
 
 
@@ -208,20 +212,51 @@ def echo_log() -> None:
 
 
 def main(argv: list[str]) -> int:
+    if argv[:1] == ["--serve"]:
+        return serve(*argv[1:3])
     engine, memory, *paths = argv
     limit_memory(int(memory))
     out = os.fdopen(os.dup(1), "w")
     os.dup2(2, 1)  # everything the engine prints, C level included, goes to stderr
     for index, path in enumerate(paths):
+        answer(engine, path, index, out)
+    return 0
+
+
+def answer(engine: str, path: str, index: int, out: Any, end: bool = False) -> None:
+    """Load one file: its marker and the engine's output on stderr, its report on ``out``
+    (``end``: an end marker on stderr before the report)."""
+    flush()
+    sys.stderr.write(f"\n{MARK} {index}\n")
+    flush()
+    report = load(engine, path)
+    if engine == "mujoco":
+        echo_log()
+    flush()
+    if end:
+        sys.stderr.write(f"\n{END} {index}\n")
         flush()
-        sys.stderr.write(f"\n{MARK} {index}\n")
-        flush()
-        report = load(engine, path)
-        if engine == "mujoco":
-            echo_log()
-        flush()
-        out.write(json.dumps(report) + "\n")
-        out.flush()
+    out.write(json.dumps(report) + "\n")
+    out.flush()
+
+
+def serve(engine: str, memory: str) -> int:
+    """``--serve ENGINE MEMORY``: one JSON-quoted path per line on stdin, answered in turn
+    (:mod:`urdflint.engines.warm`), until stdin closes; then the working folder, the
+    probe's own, is removed."""
+    limit_memory(int(memory))
+    out = os.fdopen(os.dup(1), "w")
+    os.dup2(2, 1)
+    stdin = os.fdopen(os.dup(0), "r", encoding="utf-8")
+    os.dup2(os.open(os.devnull, os.O_RDONLY), 0)  # the engine reads nothing of ours
+    for index, line in enumerate(stdin):
+        answer(engine, json.loads(line), index, out, end=True)
+    folder = Path.cwd()
+    if folder.name.startswith("urdflint-probe-"):
+        import shutil
+
+        os.chdir(folder.parent)
+        shutil.rmtree(folder, ignore_errors=True)
     return 0
 
 

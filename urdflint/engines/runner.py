@@ -4,13 +4,14 @@ The model is written to a temporary folder first: the document's own bytes (for 
 expanded document), with every mesh that resolves rewritten to its absolute path, so that
 each engine finds the meshes the run found (package paths, workspace packages, relative
 files). Elements keep their line numbers, so an engine's ``line N`` is a line of the
-document. Each probe runs with a timeout and a memory limit, from the temporary folder
-(MuJoCo writes its ``MUJOCO_LOG.TXT`` in the working folder). The Python engines run
-``python -m urdflint.engines.probe``; sdformat runs a compiled probe
-(:mod:`urdflint.engines.sdformat`, built on first use), with ``HOME`` pointing at the
-temporary folder (where sdformat writes its log file).
+document. Each probe runs with a timeout and a memory limit. The Python engines run
+``python -m urdflint.engines.probe``, kept warm from one model to the next
+(:mod:`urdflint.engines.warm`: a model a probe dies on is tried once more in a new
+process); sdformat runs a compiled probe (:mod:`urdflint.engines.sdformat`, built on
+first use) once per model, from the model's folder with ``HOME`` pointing at it (where
+sdformat writes its log file).
 
-:func:`confirm` loads one document in several engines (one process each, in parallel);
+:func:`confirm` loads one document in several engines (one probe each, in parallel);
 :func:`confirm_batch` loads many documents in one engine, in one process
 (:mod:`urdflint.engines.batch`: a process that crashes is restarted after the file it
 crashed on; sdformat's probe runs once per file), and :func:`remember` hands such outcomes
@@ -19,18 +20,15 @@ to the E rules for a document, so that linting it with ``confirm`` runs no engin
 
 from __future__ import annotations
 
-import contextlib
-import contextvars
 import copy
 import importlib.util
 import signal
 import sys
 import tempfile
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
 from weakref import WeakKeyDictionary
 
 from lxml import etree
@@ -40,8 +38,8 @@ from urdflint.engines import batch, output, sdformat
 from urdflint.engines.output import Message
 from urdflint.model.document import Document
 
-__all__ = ["ENGINES", "Outcome", "answered", "confirm", "confirm_batch", "confirm_many",
-           "died", "installed", "prepared", "probe", "remember", "write_model"]  # fmt: skip
+__all__ = ["ENGINES", "Outcome", "confirm", "confirm_batch", "confirm_many", "died",
+           "installed", "remember", "write_model"]  # fmt: skip
 MODULES = {"mujoco": "mujoco", "pybullet": "pybullet", "drake": "pydrake", "pinocchio": "pinocchio"}
 NATIVE = ("sdformat",)  # a compiled probe (:mod:`urdflint.engines.sdformat`), not Python
 TIMEOUT = 60.0  # seconds per engine
@@ -76,9 +74,6 @@ class Outcome:
 
 
 _REMEMBERED: WeakKeyDictionary[Document, list[Outcome]] = WeakKeyDictionary()  # remember()
-_ANSWERS: contextvars.ContextVar[dict[str, Any] | None] = contextvars.ContextVar(
-    "urdflint_engine_answers", default=None
-)
 
 
 def installed(engine: str) -> bool:
@@ -96,62 +91,26 @@ def command(engine: str) -> batch.Command:
     return lambda paths: [*probe, *map(str, paths)]
 
 
-def confirm(doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT) -> list[Outcome]:
-    """Load ``doc`` in each of ``engines`` (in parallel, one process each), but for the
-    outcomes :func:`remember`-ed for it and the answers :func:`answered` gives."""
+def confirm(
+    doc: Document, engines: tuple[str, ...], timeout: float = TIMEOUT, warm: bool = True
+) -> list[Outcome]:
+    """Load ``doc`` in each of ``engines`` (in parallel, one probe each), but for the
+    outcomes :func:`remember`-ed for it; ``warm=False``: in new probe processes, ended
+    with the call (the service: no engine process outlives a job)."""
     wanted = [e for e in dict.fromkeys(engines) if e in ENGINES]
     known = {o.engine: o for o in _REMEMBERED.get(doc, ())}
-    for engine, answer in (_ANSWERS.get() or {}).items():
-        if engine in wanted and engine not in known:
-            found = answer if isinstance(answer, Outcome) else outcome(doc, engine, answer, timeout)
-            known[engine] = found
     missing = [e for e in wanted if e not in known]
     if missing:
         with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
             path = write_model(doc, Path(folder))
             with ThreadPoolExecutor(max_workers=len(missing)) as pool:
-                found = pool.map(lambda e: run(doc, e, path, timeout), missing)
+                found = pool.map(lambda e: run(doc, e, path, timeout, warm), missing)
                 known.update(zip(missing, found, strict=True))
     return [known[e] for e in wanted]
 
 
-@contextlib.contextmanager
-def answered(answers: Mapping[str, Outcome | batch.Loaded]) -> Iterator[None]:
-    """While active, :func:`confirm` takes each engine's answer from ``answers`` (what its
-    probe said about this document, loaded elsewhere: ``--executor ray`` runs each
-    (file, engine) pair as its own task) instead of starting the engine."""
-    token = _ANSWERS.set(dict(answers))
-    try:
-        yield
-    finally:
-        _ANSWERS.reset(token)
-
-
-def prepared(doc: Document) -> tuple[str, str] | None:
-    """The model as :func:`write_model` writes it, as ``(file name, text)``; ``None`` when
-    the document is not a model the engines could load (unreadable, a macro library)."""
-    if not doc.ok or doc.library:
-        return None
-    with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
-        path = write_model(doc, Path(folder))
-        return path.name, path.read_text(encoding="utf-8")
-
-
-def probe(engine: str, name: str, text: str, timeout: float = TIMEOUT) -> Outcome | batch.Loaded:
-    """Load a prepared model in ``engine``'s probe process: what the probe said (turned into
-    an :class:`Outcome` against the document by :func:`confirm`), or the outcome of an
-    engine that cannot run here."""
-    unusable = _unusable(engine)
-    if unusable is not None:
-        return unusable
-    with tempfile.TemporaryDirectory(prefix="urdflint-engines-") as folder:
-        path = Path(folder) / name
-        path.write_text(text, encoding="utf-8")
-        return _load(engine, [path], timeout, path.parent)[0]
-
-
 def died(answer: Outcome | batch.Loaded) -> bool:
-    """Whether the engine's process died or hung on the model (worth one more try)."""
+    """Whether the engine's process died or hung on the model."""
     if isinstance(answer, Outcome):
         return False
     return answer.hung or answer.status is not None or answer.report is None
@@ -225,13 +184,12 @@ def _mujoco_keeps_paths(robot: etree._Element) -> None:
     compiler.set("strippath", "false")
 
 
-def run(doc: Document, engine: str, path: Path, timeout: float) -> Outcome:
+def run(doc: Document, engine: str, path: Path, timeout: float, warm: bool = True) -> Outcome:
     """Load the model written at ``path`` in ``engine`` (its own process, from its folder)."""
     unusable = _unusable(engine)
     if unusable is not None:
         return unusable
-    (loaded,) = _load(engine, [path], timeout, path.parent)
-    return outcome(doc, engine, loaded, timeout)
+    return outcome(doc, engine, _load_one(engine, path, timeout, warm), timeout)
 
 
 def _unusable(engine: str) -> Outcome | None:
@@ -260,6 +218,27 @@ def _load(engine: str, paths: list[Path], timeout: float, folder: Path) -> list[
         return [one(paths[0])]
     with ThreadPoolExecutor(max_workers=NATIVE_WORKERS) as pool:
         return list(pool.map(one, paths))
+
+
+def _load_one(engine: str, path: Path, timeout: float, warm: bool = True) -> batch.Loaded:
+    """Load one model: for the Python engines in a warm probe (:mod:`urdflint.engines.warm`;
+    ``warm=False``: a new process), tried once more in a new process when the probe died
+    on it (a crash that does not come back was not the model's); sdformat's probe, once."""
+    if engine in NATIVE:
+        return _load(engine, [path], timeout, path.parent)[0]
+    loaded = _probe(engine, path, timeout, warm)
+    if died(loaded) and not loaded.hung and loaded.failed is None:
+        loaded = _probe(engine, path, timeout, warm)  # once more, in a new process
+    return loaded
+
+
+def _probe(engine: str, path: Path, timeout: float, kept: bool) -> batch.Loaded:
+    from urdflint.engines import warm
+
+    if not kept:
+        return _load(engine, [path], timeout, path.parent)[0]
+    with warm.borrowed(engine, MEMORY) as probe:
+        return probe.load(path, timeout)
 
 
 def outcome(doc: Document, engine: str, loaded: batch.Loaded, timeout: float) -> Outcome:
