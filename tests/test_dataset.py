@@ -217,3 +217,32 @@ def test_a_run_keeps_a_bounded_number_of_meshes_loaded(monkeypatch, tmp_path: Pa
     meshes.load(paths[2])
     assert len(meshes) == 2 and meshes.load(paths[0]) is first  # b went, not a
     assert meshes.loads == 3
+
+
+def test_only_the_most_recent_meshes_keep_their_trimesh_data(monkeypatch, tmp_path) -> None:
+    """Beyond the byte budget, older meshes keep their facts and let the trimesh data go;
+    a fact never computed reads the file again, with the same answer."""
+    pytest.importorskip("trimesh")
+    from urdflint.sources import mesh_cache
+
+    box = ROOT / "fixtures" / "rules" / "C009" / "meshes" / "box.obj"
+    paths = []
+    for name in ("a", "b", "c"):
+        paths.append(tmp_path / f"{name}.obj")
+        shutil.copy(box, paths[-1])
+    meshes = mesh_cache.MeshCache()
+    first = meshes.load(paths[0])
+    weight = mesh_cache._weight(first._mesh)
+    assert weight > 0
+    monkeypatch.setattr(mesh_cache, "HEAVY_BYTES", 2 * weight)
+    assert first.watertight  # a fact computed while its data is there
+    meshes.load(paths[1])
+    assert first._mesh is not None and meshes._heavy_bytes == 2 * weight
+    meshes.load(paths[2])  # over the budget: a's data goes, its facts stay
+    assert first._mesh is None and meshes._heavy_bytes == 2 * weight
+    assert meshes.load(paths[0]) is first and meshes.loads == 3
+    assert first.watertight and meshes.loads == 3  # known: not read again
+    fresh = mesh_cache.MeshCache().load(paths[0])
+    assert first.solid() == fresh.solid() and meshes.loads == 4  # read again, same answer
+    assert first._mesh is not None and meshes._heavy_bytes == 2 * weight  # counted again
+    assert meshes._cache[next(iter(meshes._heavy))].path == paths[2]  # b's data went

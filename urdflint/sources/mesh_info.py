@@ -78,6 +78,13 @@ class MeshInfo:
             object.__setattr__(self, "_mesh", self._loader())
         return self._mesh
 
+    def release(self, loader: Any) -> None:
+        """Let the trimesh data go (memory), keeping the facts: ``loader`` reads it again
+        when a fact never computed is asked for."""
+        if self._mesh is not None:
+            object.__setattr__(self, "_loader", loader)
+            object.__setattr__(self, "_mesh", None)
+
     def _remember(self, name: str, value: Any) -> None:
         self._memo[name] = value
         if self._stored is not None:
