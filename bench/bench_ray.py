@@ -5,11 +5,15 @@ projection to 100,000 files on a cluster.
 
     .venv/bin/python bench/bench_ray.py [--files 2000] [--confirm-files 200]
         [--engines mujoco,pybullet] [--repeat 1] [--cpus 2] [--node-cpus 16]
-        [--largest BYTES] [--timeout S] [--keep] [--json]
+        [--largest BYTES] [--order interleaved|sorted] [--timeout S] [--keep] [--json]
 
 Input: ``--files`` variants of the corpus robots (../shared/corpus/robots) written by
 :func:`tests.variants.make` in a temporary folder (each robot's folder with its meshes
-linked and a ``urdflint.toml`` naming its packages; one defect planted in most files).
+linked and a ``urdflint.toml`` naming its packages; one defect planted in most files),
+given robot by robot in turn (``--order interleaved``: a worker meets every robot's
+meshes within its first files, and what its memory does after is the steady state of a
+long run) or as the folder is walked (``--order sorted``: new robots, new meshes, until
+the last file).
 A Ray head with ``--cpus`` CPUs is started for the run on 127.0.0.1 (``ray start --head
 --block`` in its own session and temporary folder, token authentication off,
 ``RAY_AUTH_MODE=disabled``) and stopped at the end (SIGTERM, then SIGKILL, to its process
@@ -35,13 +39,17 @@ spreads over all of them); the medians are reported:
   3. memory: every 0.5 s while each command of 1. runs, the RSS (``/proc/PID/status``
      VmRSS) of the driver (the urdflint process) and of each worker: Ray's (processes of the
      head's session whose title starts with ``ray::``, the agents aside; ``ray::IDLE``
-     until a task runs) and the ``--jobs`` pool's (the driver's children). Per worker: the
+     until a task runs) and the ``--jobs`` pool's (the driver's children), and the engines'
+     warm probes (their children, ``urdflint.engines.probe``). Per worker: the
      RSS at the first sample after it started working, at the middle of its working time,
      the largest, the last; flat when last/first ≤ 1.25 (and when not: whether the second
      half still grows, last/mid > 1.10, or it levelled off once its meshes were read). The
      head's own processes (gcs_server, raylet...) before and after, and the CPU time of
-     every process (``/proc/PID/stat``; a process's waited-for children included, so the
-     engines' probes too): where Ray's overhead goes.
+     every process (``/proc/PID/stat``: each process's own, the driver's, the workers',
+     the probes'; the head's with their waited-for children): where Ray's overhead goes.
+     A worker does not wait for its warm probes when it exits, so no rusage has their CPU:
+     the CPU column is these sampled times summed (the last 0.5 s of a process may be
+     missed), the rusage beside it.
   4. the records of the Ray run and of ``--jobs N`` compared by path, ``inputs`` aside
      (a folder listed once per process is recorded by the first of its files that process
      checks); with --confirm too.
@@ -91,6 +99,8 @@ RAY_BIN = Path(sys.executable).with_name("ray")
 TICK = 0.5  # seconds between memory samples
 CLK = os.sysconf("SC_CLK_TCK")
 AGENTS = (b"ray::DashboardAgent", b"ray::RuntimeEnvAgent")  # the head's, not workers
+PROBE = b"urdflint.engines.probe"  # an engine's probe process, a worker's child
+RECYCLE = 200  # models per warm probe (urdflint.engines.warm.RECYCLE)
 STARTING = (b"setup_worker.py", b"default_worker.py")  # a Ray worker before its title
 FLAT = 1.25  # last/first within this: flat
 LEVEL = 1.10  # last/mid within this: levelled off
@@ -190,6 +200,7 @@ class Proc:
     ppid: int
     sid: int
     cpu_s: float  # utime + stime + cutime + cstime (waited-for children included)
+    own_s: float  # utime + stime
 
 
 def processes() -> dict[int, Proc]:
@@ -205,7 +216,10 @@ def processes() -> dict[int, Proc]:
             continue
         rest = text[text.rindex(b")") + 2 :].split()
         ticks = sum(int(x) for x in rest[11:15])
-        found[int(entry.name)] = Proc(int(entry.name), int(rest[1]), int(rest[3]), ticks / CLK)
+        own = int(rest[11]) + int(rest[12])
+        found[int(entry.name)] = Proc(
+            int(entry.name), int(rest[1]), int(rest[3]), ticks / CLK, own / CLK
+        )
     return found
 
 
@@ -306,6 +320,7 @@ class Watch:
     driver: list[tuple[float, int, int, int, float, float]] = field(default_factory=list)
     # (t, RSS, peak RSS, records written, its CPU s, the workers' CPU s so far)
     workers: dict[int, Track] = field(default_factory=dict)
+    probes: dict[int, Track] = field(default_factory=dict)  # the engines' (workers' children)
     head: dict[int, Track] = field(default_factory=dict)
     first_record_s: float | None = None
     last_record_s: float | None = None  # the first sample that saw the last record
@@ -364,9 +379,12 @@ class Sampler(threading.Thread):
     def workers(self) -> None:
         table = processes()
         if self.kind == "pool":
+            pool = {p.pid for p in table.values() if p.ppid == self.pid}
             for proc in table.values():
                 if proc.ppid == self.pid:
                     self.note(self.found.workers, proc, "pool", busy=True)
+                elif proc.ppid in pool and PROBE in cmdline(proc.pid):
+                    self.note(self.found.probes, proc, title(cmdline(proc.pid)), busy=True)
             return
         session = {p.pid: cmdline(p.pid) for p in table.values() if p.sid == self.head_sid}
         workers = {pid for pid, raw in session.items() if is_worker(raw)}
@@ -375,22 +393,30 @@ class Sampler(threading.Thread):
                 busy = raw.startswith(b"ray::") and not raw.startswith(b"ray::IDLE")
                 name = title(raw) if raw.startswith(b"ray::") else "ray::(starting)"
                 self.note(self.found.workers, table[pid], name, busy=busy)
-            elif table[pid].ppid not in workers:  # (a worker's child: an engine's probe)
-                self.note(self.found.head, table[pid], title(raw), busy=True)
+            elif table[pid].ppid not in workers:
+                self.note(self.found.head, table[pid], title(raw), busy=True, own=False)
+            elif PROBE in raw:  # a worker's child: an engine's probe
+                self.note(self.found.probes, table[pid], title(raw), busy=True)
 
-    def note(self, tracks: dict[int, Track], proc: Proc, name: str, busy: bool) -> None:
+    def note(
+        self, tracks: dict[int, Track], proc: Proc, name: str, busy: bool, own: bool = True
+    ) -> None:
+        """One sample of ``proc``; its CPU its own (``own``: the workers and the probes,
+        whose children are the probes, sampled apart: a probe a worker stops and waits for
+        would count twice) or with its waited-for children (the head's processes)."""
         rss = status(proc.pid).get("VmRSS")
         if rss is None:
             return
         track = tracks.get(proc.pid)
         if track is None:
-            track = tracks[proc.pid] = Track(proc.pid, name, cpu_first=proc.cpu_s)
+            first = proc.own_s if own else proc.cpu_s
+            track = tracks[proc.pid] = Track(proc.pid, name, cpu_first=first)
         if busy and track.started is None:
             track.started = len(track.samples)
         if name not in track.titles:
             track.titles.append(name)
         track.samples.append((time.perf_counter() - self.start_t, rss))
-        track.cpu_last = proc.cpu_s
+        track.cpu_last = proc.own_s if own else proc.cpu_s
 
 
 @dataclass
@@ -619,6 +645,15 @@ def memory(result: Result, files: int) -> dict[str, Any]:
         "workers_warm_cpu_per_file_s": warm,  # the slope over the second half of the records
         "head": head,
         "head_cpu_s": sum(v["cpu_s"] for v in head.values()),
+        # the engines' warm probes: not waited for by their worker (it exits without
+        # waiting), so in no rusage: sampled (the last 0.5 s of each may be missed)
+        "probes": [t.summary() for t in w.probes.values() if t.samples],
+        "probes_cpu_s": sum(t.cpu_last for t in w.probes.values()),
+        # every process's own CPU, sampled: the driver, workers, probes (and Ray's head)
+        "total_cpu_s": driver["cpu_s"]
+        + sum(t.cpu_last for t in w.workers.values())
+        + sum(t.cpu_last for t in w.probes.values())
+        + sum(v["cpu_s"] for v in head.values()),
     }
 
 
@@ -654,6 +689,15 @@ def compare(mine: Path, theirs: Path) -> dict[str, Any]:
 # -- the bench --------------------------------------------------------------------------------
 
 
+def interleaved(names: list[str]) -> list[str]:
+    """The files robot by robot in turn (``a/0, b/0, ..., a/1, b/1, ...``)."""
+    groups: dict[str, list[str]] = {}
+    for name in sorted(names):
+        groups.setdefault(name.split(os.sep, 1)[0], []).append(name)
+    columns = list(groups.values())
+    return [c[i] for i in range(max(map(len, columns), default=0)) for c in columns if i < len(c)]
+
+
 def measure(args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
     from tests import variants
 
@@ -662,6 +706,8 @@ def measure(args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
     outs.mkdir()
     made = variants.make(dataset, args.files, largest=args.largest)
     names = [str(p.relative_to(dataset)) for p in made]
+    if args.order == "interleaved":
+        names = interleaved(names)
     listing = tmp / "files.txt"
     listing.write_text("\n".join(names) + "\n", encoding="utf-8")
     confirm_names = names[: args.confirm_files]
@@ -680,6 +726,7 @@ def measure(args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
     found: dict[str, Any] = {
         "files": len(made), "confirm_files": len(confirm_names), "engines": engines,
         "missing_engines": missing, "cpus": args.cpus, "repeat": args.repeat,
+        "order": args.order,
         "cpu_count": os.cpu_count(), "load": [list(os.getloadavg())],
     }  # fmt: skip
     try:
@@ -713,8 +760,9 @@ def measure(args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
         runs: dict[str, list[Result]] = {k: [] for k in ("jobs", "ray", "jobs_c", "ray_c")}
         for turn in range(args.repeat):
             say(f"turn {turn + 1}/{args.repeat}")
-            runs["jobs"].append(check(f"jobs{turn}", pool_flags, ["."], "pool", timeout))
-            runs["ray"].append(check(f"ray{turn}", ray_flags, ["."], "ray", timeout))
+            every = ["."] if args.order == "sorted" else names
+            runs["jobs"].append(check(f"jobs{turn}", pool_flags, every, "pool", timeout))
+            runs["ray"].append(check(f"ray{turn}", ray_flags, every, "ray", timeout))
             if confirm and confirm_names:
                 c_pool, c_ray = [*pool_flags, *confirm], [*ray_flags, *confirm]
                 runs["jobs_c"].append(
@@ -722,7 +770,7 @@ def measure(args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
                 )
                 runs["ray_c"].append(check(f"rayc{turn}", c_ray, confirm_names, "ray", ctimeout))
         say("once: --jobs 1, one file, the lxml floor")
-        serial = check("jobs1", ["--jobs", "1"], ["."], None, timeout * args.cpus)
+        serial = check("jobs1", ["--jobs", "1"], every, None, timeout * args.cpus)
         single = check("single", ["--jobs", "1"], names[:1], None, timeout)
         floor = execute("floor", [sys.executable, "-c", FLOOR, str(listing)], dataset, logs,
                         timeout, ok=(0,))  # fmt: skip
@@ -783,7 +831,7 @@ def project(
         / max(1, files - 1),
     }
     if "ray_c" in mem and engines:
-        confirm_worker = mem["ray_c"]["workers_cpu_s"] / cfiles
+        confirm_worker = (mem["ray_c"]["workers_cpu_s"] + mem["ray_c"]["probes_cpu_s"]) / cfiles
         per.update(
             confirm_worker_cpu_s=confirm_worker,
             confirm_driver_cpu_s=driver("ray_c", cfiles),
@@ -914,12 +962,8 @@ def report(f: dict[str, Any], args: argparse.Namespace) -> str:
         ["check --jobs 1", str(n), f"{f['serial']['wall_s']:.2f}", f"{f['serial']['cpu_s']:.1f}",
          f"{f['serial']['wall_s'] / floor:.0f}"],
     ]  # fmt: skip
-    for key, label in labels.items():
-        cpu = median([r["cpu_s"] for r in f["runs"][key]])
-        if "ray" in key:  # the driver's own; the workers' and the head's, sampled
-            cpu_text = f"{cpu + mem[key]['workers_cpu_s']:.1f} (driver {cpu:.1f})"
-        else:
-            cpu_text = f"{cpu:.1f}"
+    for key, label in labels.items():  # every process's own CPU, sampled
+        cpu_text = f"{mem[key]['total_cpu_s']:.1f}"
         count = n if key in ("jobs", "ray") else f["confirm_files"]
         rows.append([label, str(count), f"{med[key]:.2f}", cpu_text, f"{med[key] / floor:.0f}"])
     out += ["", table(("command", "files", "wall s", "CPU s", "× floor"), rows)]
@@ -943,10 +987,12 @@ def report(f: dict[str, Any], args: argparse.Namespace) -> str:
     for key, label in labels.items():
         m, drv = mem[key], mem[key]["driver"]
         cpu = median([r["cpu_s"] for r in f["runs"][key]])
+        probes = f", engines' probes {m['probes_cpu_s']:.1f} s" if m["probes"] else ""
+        own = f"driver {drv['cpu_s']:.1f} s, workers {m['workers_cpu_s']:.1f} s{probes}"
         if "ray" in key:
-            parts = f"driver {cpu:.1f} s, workers {m['workers_cpu_s']:.1f} s, head {m['head_cpu_s']:.1f} s"
+            parts = f"{own}, head {m['head_cpu_s']:.1f} s (the driver's rusage {cpu:.1f} s)"
         else:
-            parts = f"driver and workers {cpu:.1f} s"
+            parts = f"{own} (rusage of the driver and its pool: {cpu:.1f} s)"
         first, last = drv["first_record_s"], drv["last_record_s"]
         span = "-" if first is None or last is None else f"{first:.1f} s to {last:.1f} s"
         out.append(f"CPU, {label}: {parts}; records written from {span}, exit at {med[key]:.1f} s")
@@ -987,6 +1033,15 @@ def report(f: dict[str, Any], args: argparse.Namespace) -> str:
             rows.append([f"{labels[key]}: {len(m['idle_workers'])} worker(s) never busy",
                          "", "", "", "", "", ""])  # fmt: skip
     out.append(table(("process", "first", "mid", "max", "last", "last/first", "verdict"), rows))
+    for key in ("jobs_c", "ray_c"):
+        probes = mem.get(key, {}).get("probes") or []
+        if probes:  # (each starts small, then imports its engine: no verdict from first)
+            late = [p["last_b"] for p in probes]
+            out.append(
+                f"the engines' warm probes over {labels[key]}: {len(probes)} process(es) "
+                f"(a new one every {RECYCLE} models), the largest {mb(max(late))} at its end, "
+                f"{mb(max(p['max_b'] for p in probes))} at most"
+            )
     head = mem["ray"]["head"]
     if head:
         parts = [f"{k} {mb(v['first_b'])} → {mb(v['last_b'])}" for k, v in sorted(head.items())]
@@ -1054,6 +1109,12 @@ def main() -> int:
     parser.add_argument("--repeat", type=int, default=1, help="turns of each command (median)")
     parser.add_argument(
         "--cpus", type=int, default=2, help="the head's CPUs and --jobs (default 2)"
+    )
+    parser.add_argument(
+        "--order",
+        choices=("interleaved", "sorted"),
+        default="interleaved",
+        help="the files in turn robot by robot (default), or the folder as walked",
     )
     parser.add_argument("--node-cpus", type=int, default=16, help="CPUs per node, projection")
     parser.add_argument("--largest", type=int, default=None, help="corpus robots up to N bytes")
