@@ -246,3 +246,40 @@ def test_only_the_most_recent_meshes_keep_their_trimesh_data(monkeypatch, tmp_pa
     assert first.solid() == fresh.solid() and meshes.loads == 4  # read again, same answer
     assert first._mesh is not None and meshes._heavy_bytes == 2 * weight  # counted again
     assert meshes._cache[next(iter(meshes._heavy))].path == paths[2]  # b's data went
+
+
+ROBOT_WITH_MISSING_PACKAGE = """<robot name="r">
+  <link name="base">
+    <collision><geometry><mesh filename="package://nowhere/m.stl"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+def test_files_given_one_by_one_share_their_settings_and_a_message_names_three_folders(
+    tmp_path: Path, capsys
+) -> None:
+    """A dataset given file by file (a shell glob, a list): the files of a folder share one
+    settings object (digested once per run, not once per file), and where a package was
+    looked for names the first three folders walked, then how many more."""
+    import argparse
+
+    from urdflint.engine.options import SettingsFinder
+
+    files = []
+    for index in range(5):
+        folder = tmp_path / f"set{index}"
+        folder.mkdir()
+        for name in ("a.urdf", "b.urdf"):
+            (folder / name).write_text(ROBOT_WITH_MISSING_PACKAGE)
+            files.append(str(folder / name))
+    main(["check", *files, "--isolated", "--select", "C004", "--show-info", "--format", "json"])
+    found = json.loads(capsys.readouterr().out)["findings"]
+    assert len(found) == 10 and {f["code"] for f in found} == {"C004"}
+    assert all("and 2 more folders" in f["message"] for f in found), found[0]["message"]
+    args = argparse.Namespace(command="check", select=[], ignore=[], exit_zero=False,
+                              fail_on=None, target=None, xacro_arg=[], q=[], isolated=False,
+                              config=None)  # fmt: skip
+    finder = SettingsFinder(args)
+    first, second = (finder.for_folder(Path(f).parent) for f in files[:2])
+    assert first is second is finder.for_folder(tmp_path / "set1")  # none has a configuration

@@ -43,6 +43,7 @@ class Plan:
     resume: IO[str] | None = None  # --resume's file: only new records go there
     lean: bool = False  # every output is records: keep counts, not findings
     settings: dict[int, str] = field(default_factory=dict)  # id(settings) -> digest
+    context: str | None = None  # the digest of urdflint's code and the run's context
     reused: int = 0
     stale: int = 0
 
@@ -132,9 +133,9 @@ def settings_digest(found: Plan, task: parallel.Task, context: Any) -> str:
     if known is None:
         from urdflint.cache import keys
 
-        known = keys.digest(
-            keys.code_version(), keys.settings_key(task.settings), keys.context_key(context)
-        )
+        if found.context is None:  # once per run: it names every path given (thousands)
+            found.context = keys.digest(keys.code_version(), keys.context_key(context))
+        known = keys.digest(found.context, keys.settings_key(task.settings))
         found.settings[id(task.settings)] = known
     return known
 

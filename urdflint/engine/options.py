@@ -143,17 +143,27 @@ class SettingsFinder:
         self.isolated = args.isolated
         self.explicit = config.load(args.config) if args.config else None
         self.cache: dict[Path, config.Settings] = {}
+        self.base = config.Settings()  # --isolated's, and a folder without configuration's
+        self.applied: dict[int, tuple[config.Settings, config.Settings]] = {}  # id(base) ->
+
+    def _apply_once(self, settings: config.Settings) -> config.Settings:
+        """:meth:`_apply`, one object per configuration: the files of a folder share their
+        settings (a run over thousands of files digests each settings once)."""
+        known = self.applied.get(id(settings))
+        if known is None or known[0] is not settings:
+            known = self.applied[id(settings)] = (settings, self._apply(settings))
+        return known[1]
 
     def for_folder(self, folder: Path) -> config.Settings:
         if self.explicit is not None:
-            return self._apply(self.explicit)
+            return self._apply_once(self.explicit)
         if self.isolated:
-            return self._apply(config.Settings())
+            return self._apply_once(self.base)
         folder = folder.resolve()
         if folder not in self.cache:
             found = config.discover(folder)
-            self.cache[folder] = config.load(found) if found else config.Settings()
-        return self._apply(self.cache[folder])
+            self.cache[folder] = config.load(found) if found else self.base
+        return self._apply_once(self.cache[folder])
 
     def _apply(self, settings: config.Settings) -> config.Settings:
         extra: dict[str, Any] = dict(self.overrides)

@@ -100,21 +100,39 @@ def searched(resolver: Resolver) -> list[str]:
     """Where packages were looked for beyond the resolver's own list: the package paths
     given (by name), the workspace folders walked, and the ROS environment variables when
     they are not set."""
-    from urdflint.sources.workspace import roots_for
-
     found: list[str] = []
     if resolver.package_paths:
         found.append(f"the package paths given ({', '.join(sorted(resolver.package_paths))})")
-    given = tuple(getattr(resolver.workspace, "paths", ()))
-    spelled = {}  # each folder as the run was given it (not through its symbolic links)
-    for raw in given:
-        folder = raw if raw.is_dir() else raw.parent
-        spelled.setdefault(folder.resolve(), folder)
-    roots = [spelled.get(root, root) for root in roots_for(given)]
+    roots = _walked(resolver.workspace)
     if roots:
         count = len(resolver.workspace)
         held = f"{count} packages" if count else "no package.xml"
-        found.append(f"the workspace below {', '.join(str(p) for p in roots)} ({held})")
+        shown = ", ".join(str(p) for p in roots[:SHOWN_ROOTS])
+        if len(roots) > SHOWN_ROOTS:
+            shown += f" and {len(roots) - SHOWN_ROOTS} more folders"
+        found.append(f"the workspace below {shown} ({held})")
     if resolver.root is None and not resolver.ros_paths and not resolver.ament:
         found.append("ROS_PACKAGE_PATH and AMENT_PREFIX_PATH, which are not set")
+    return found
+
+
+SHOWN_ROOTS = 3  # workspace folders a message names (a run over thousands of files...)
+
+
+def _walked(workspace: object) -> tuple[Path, ...]:
+    """The folders the workspace of a run walks, each as the run was given it (not through
+    its symbolic links): once per workspace index, kept with it, not once per message."""
+    from urdflint.sources.workspace import roots_for
+
+    known = getattr(workspace, "walked", None)
+    if known is not None:
+        return known  # type: ignore[no-any-return]
+    given = tuple(getattr(workspace, "paths", ()))
+    spelled: dict[Path, Path] = {}
+    for raw in given:
+        folder = raw if raw.is_dir() else raw.parent
+        spelled.setdefault(folder.resolve(), folder)
+    found = tuple(spelled.get(root, root) for root in roots_for(given))
+    if hasattr(workspace, "walked"):
+        workspace.walked = found  # type: ignore[attr-defined]
     return found

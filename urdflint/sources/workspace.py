@@ -141,6 +141,7 @@ class Packages(Mapping[str, Path]):
         self._all: dict[str, tuple[Path, ...]] = {}
         self._digest = ""
         self.key = json.dumps(sorted({str(p.resolve()) for p in self.paths}))
+        self.walked: tuple[Path, ...] | None = None  # the folders walked, as given (messages)
 
     @property
     def found(self) -> dict[str, Path]:
