@@ -141,6 +141,8 @@ class Packages(Mapping[str, Path]):
         self._all: dict[str, tuple[Path, ...]] = {}
         self._digest = ""
         self.key = json.dumps(sorted({str(p.resolve()) for p in self.paths}))
+        # what an analysis key holds of it: short, however many paths the run was given
+        self.digest = hashlib.blake2b(self.key.encode(), digest_size=16).hexdigest()
         self.walked: tuple[Path, ...] | None = None  # the folders walked, as given (messages)
 
     @property
