@@ -35,7 +35,8 @@ spreads over all of them); the medians are reported:
      forked, inherits them), and the driver's ``ray.wait(num_returns=1)`` over 16 and 4096
      tasks in flight (its cost per task finished, for 5.).
   2. the same two commands with ``--confirm ENGINES`` on the first ``--confirm-files``
-     files: each (file, engine) pair a Ray task; the overhead.
+     files (each worker's engines in warm probes beside it, as in a ``--jobs`` worker); the
+     overhead.
   3. memory: every 0.5 s while each command of 1. runs, the RSS (``/proc/PID/status``
      VmRSS) of the driver (the urdflint process) and of each worker: Ray's (processes of the
      head's session whose title starts with ``ray::``, the agents aside; ``ray::IDLE``
@@ -100,7 +101,6 @@ TICK = 0.5  # seconds between memory samples
 CLK = os.sysconf("SC_CLK_TCK")
 AGENTS = (b"ray::DashboardAgent", b"ray::RuntimeEnvAgent")  # the head's, not workers
 PROBE = b"urdflint.engines.probe"  # an engine's probe process, a worker's child
-RECYCLE = 200  # models per warm probe (urdflint.engines.warm.RECYCLE)
 STARTING = (b"setup_worker.py", b"default_worker.py")  # a Ray worker before its title
 FLAT = 1.25  # last/first within this: flat
 LEVEL = 1.10  # last/mid within this: levelled off
@@ -854,11 +854,10 @@ def project(
     for nodes in NODES:
         cpus = nodes * args.node_cpus
         row: dict[str, Any] = {"nodes": nodes, "cpus": cpus}
-        row["plain"] = projected(warm, cold, per["driver_cpu_s"], cpus, join, chunked=True)
+        row["plain"] = projected(warm, cold, per["driver_cpu_s"], cpus, join)
         if "confirm_worker_cpu_s" in per:
             row["confirm"] = projected(per["confirm_worker_cpu_s"], worker_start,
-                                       per["confirm_driver_cpu_s"], cpus, join, chunked=False,
-                                       tasks=2 + engines)  # fmt: skip
+                                       per["confirm_driver_cpu_s"], cpus, join)  # fmt: skip
         rows.append(row)
     drv = mem["ray"]["driver"]
     grows = drv["b_per_record"] or 0.0
@@ -883,24 +882,15 @@ def project(
 
 
 def projected(
-    worker: float,
-    worker_start: float,
-    driver: float,
-    cpus: int,
-    join: dict[str, float],
-    chunked: bool,
-    tasks: int = 1,
+    worker: float, worker_start: float, driver: float, cpus: int, join: dict[str, float]
 ) -> dict[str, Any]:
     """:data:`PROJECTED` files on ``cpus`` CPUs: each worker's start, then the workers' CPU
     per file spread over the CPUs, against the driver's, which is one process and also pays
-    one ``ray.wait`` over the tasks in flight (4 per CPU) per task finished (chunks of files
-    without --confirm, as ray_run sizes them; ``tasks`` per file with it); plus joining."""
+    one ``ray.wait`` over the tasks in flight (4 per CPU) per task finished (chunks of files,
+    as ray_run sizes them, with or without --confirm); plus joining."""
     in_flight = cpus * 4
-    if chunked:
-        chunk = max(1, min(16, PROJECTED // (cpus * 8)))
-        waits = PROJECTED / chunk
-    else:
-        chunk, waits = 1, PROJECTED * tasks
+    chunk = max(1, min(16, PROJECTED // (cpus * 8)))
+    waits = PROJECTED / chunk
     wait_s = join["wait_base_s"] + join["wait_per_ref_s"] * in_flight
     workers_s = worker_start + PROJECTED * worker / cpus
     driver_s = PROJECTED * driver + waits * wait_s
@@ -1033,13 +1023,15 @@ def report(f: dict[str, Any], args: argparse.Namespace) -> str:
             rows.append([f"{labels[key]}: {len(m['idle_workers'])} worker(s) never busy",
                          "", "", "", "", "", ""])  # fmt: skip
     out.append(table(("process", "first", "mid", "max", "last", "last/first", "verdict"), rows))
+    from urdflint.engines import warm
+
     for key in ("jobs_c", "ray_c"):
         probes = mem.get(key, {}).get("probes") or []
         if probes:  # (each starts small, then imports its engine: no verdict from first)
             late = [p["last_b"] for p in probes]
             out.append(
                 f"the engines' warm probes over {labels[key]}: {len(probes)} process(es) "
-                f"(a new one every {RECYCLE} models), the largest {mb(max(late))} at its end, "
+                f"(a new one every {warm.RECYCLE} models), the largest {mb(max(late))} at its end, "
                 f"{mb(max(p['max_b'] for p in probes))} at most"
             )
     head = mem["ray"]["head"]

@@ -167,7 +167,7 @@ def context_key(context: Any) -> Any:
         {name: str(Path(folder).resolve()) for name, folder in context.package_paths.items()},
         str(context.root) if context.root is not None else None,
         dict(context.q),
-        getattr(context.workspace, "digest", None) or getattr(context.workspace, "key", None),
+        getattr(context.workspace, "key", None),
         {name: env.get(name) for name in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")},
         os.getcwd(),
     )

@@ -132,18 +132,22 @@ class Packages(Mapping[str, Path]):
     """
 
     def __init__(self, paths: Iterable[Path], cache: object = None) -> None:
-        global _CACHE
         self.paths = tuple(paths)
         self.cache = cache
-        if cache is not None:
-            _CACHE = cache
         self._found: dict[str, Path] | None = None
         self._all: dict[str, tuple[Path, ...]] = {}
         self._digest = ""
-        self.key = json.dumps(sorted({str(p.resolve()) for p in self.paths}))
-        # what an analysis key holds of it: short, however many paths the run was given
-        self.digest = hashlib.blake2b(self.key.encode(), digest_size=16).hexdigest()
+        # its name in analysis keys and records' inputs: a digest, however many paths the
+        # run was given (the paths themselves made each record of a 2,000-file run 144 kB)
+        given = json.dumps(sorted({str(p.resolve()) for p in self.paths}))
+        self.key = "paths:" + hashlib.blake2b(given.encode(), digest_size=16).hexdigest()
         self.walked: tuple[Path, ...] | None = None  # the folders walked, as given (messages)
+        _LIVE[self.key] = self
+
+    def __setstate__(self, state: dict[str, object]) -> None:
+        """Unpickled in a worker (``--jobs``, Ray): known by its key there too."""
+        self.__dict__.update(state)
+        _LIVE[self.key] = self
 
     @property
     def found(self) -> dict[str, Path]:
@@ -163,7 +167,6 @@ class Packages(Mapping[str, Path]):
             self._all = {name: tuple(folders) for name, folders in every.items()}
             self._found = {name: folders[0] for name, folders in self._all.items()}
             self._digest = _digest(listed)
-            _LIVE[self.key] = self
         deps.note("packages", self.key, self._digest)
         return self._found
 
@@ -194,7 +197,6 @@ class Packages(Mapping[str, Path]):
 
 
 _LIVE: dict[str, Packages] = {}  # the indexes this process read, by their roots
-_CACHE: object = None  # the cache the last index was kept in
 
 
 def _digest(listed: list[tuple[str, str]]) -> str:
@@ -202,10 +204,12 @@ def _digest(listed: list[tuple[str, str]]) -> str:
 
 
 def _same_packages(key: str, recorded: object) -> bool:
-    """A cached analysis's ``packages`` input: the index of these roots is still the same."""
+    """A cached analysis's ``packages`` input: the index of these roots is still the same.
+    The key names the paths of a run of this process (an analysis's key holds its
+    workspace's: another run's results are never looked up here); unknown, it is stale."""
     live = _LIVE.get(key)
     if live is None:
-        live = Packages([Path(p) for p in json.loads(key)], _CACHE)
+        return False
     live.found  # noqa: B018 - builds (or checks) the index
     return live._digest == recorded
 
