@@ -199,17 +199,22 @@ def test_executor_ray_with_nobody_at_the_address_is_one_line(capsys) -> None:
     assert "no Ray cluster answers at 127.0.0.1:9" in err
 
 
+def three_boxes(folder: Path) -> list[Path]:
+    """Three copies of a box mesh: three files for the mesh cache."""
+    box = ROOT / "fixtures" / "rules" / "C009" / "meshes" / "box.obj"
+    paths = [folder / f"{name}.obj" for name in ("a", "b", "c")]
+    for path in paths:
+        shutil.copy(box, path)
+    return paths
+
+
 def test_a_run_keeps_a_bounded_number_of_meshes_loaded(monkeypatch, tmp_path: Path) -> None:
     """A worker of a dataset run meets thousands of meshes: the least recently used go."""
     pytest.importorskip("trimesh")
     from urdflint.sources import mesh_cache
 
     monkeypatch.setattr(mesh_cache, "KEPT", 2)
-    box = ROOT / "fixtures" / "rules" / "C009" / "meshes" / "box.obj"
-    paths = []
-    for name in ("a", "b", "c"):
-        paths.append(tmp_path / f"{name}.obj")
-        shutil.copy(box, paths[-1])
+    paths = three_boxes(tmp_path)
     meshes = mesh_cache.MeshCache()
     first = meshes.load(paths[0])
     meshes.load(paths[1])
@@ -225,11 +230,7 @@ def test_only_the_most_recent_meshes_keep_their_trimesh_data(monkeypatch, tmp_pa
     pytest.importorskip("trimesh")
     from urdflint.sources import mesh_cache
 
-    box = ROOT / "fixtures" / "rules" / "C009" / "meshes" / "box.obj"
-    paths = []
-    for name in ("a", "b", "c"):
-        paths.append(tmp_path / f"{name}.obj")
-        shutil.copy(box, paths[-1])
+    paths = three_boxes(tmp_path)
     meshes = mesh_cache.MeshCache()
     first = meshes.load(paths[0])
     weight = mesh_cache._weight(first._mesh)

@@ -115,22 +115,17 @@ def run(
     work = parallel.lint_recorded if flags.record else parallel.lint_one
     run_id = uuid.uuid4().hex  # a worker keeps one context per run (its mesh cache...)
     shared = ray.put((run_id, replace(context, environ=dict(os.environ)), flags, work, os.getcwd()))
-    remote = _remotes(ray)
+    lint = ray.remote(max_retries=1)(_lint_chunk)  # retried once when its worker dies
     progress = parallel.Progress(len(tasks), sys.stderr)
     try:
-        yield from _chunked(ray, remote, shared, tasks, cpus, progress)
+        yield from _chunked(ray, lint, shared, tasks, cpus, progress)
     finally:
         progress.close()
 
 
-def _remotes(ray: Any) -> dict[str, Any]:
-    """The task functions (Ray retries each once when its worker dies)."""
-    return {"lint": ray.remote(max_retries=1)(_lint_chunk)}
-
-
 def _chunked(
     ray: Any,
-    remote: dict[str, Any],
+    lint: Any,
     shared: Any,
     tasks: Sequence[parallel.Task],
     cpus: int,
@@ -139,15 +134,15 @@ def _chunked(
     size = max(1, min(CHUNK, len(tasks) // (cpus * TASKS_PER_CPU)))
     waiting = [list(range(i, min(i + size, len(tasks)))) for i in range(0, len(tasks), size)]
     waiting.reverse()  # popped from the end: input order
-    running: dict[Any, tuple[list[int], int]] = {}  # ref -> (indexes, times lost)
+    running: dict[Any, list[int]] = {}  # ref -> its files' indexes
     limit = cpus * IN_FLIGHT_PER_CPU
     while waiting or running:
         while waiting and len(running) < limit:
             chunk = waiting.pop()
-            ref = remote["lint"].remote(shared, [tasks[i] for i in chunk])
-            running[ref] = (chunk, 0)
+            ref = lint.remote(shared, [tasks[i] for i in chunk])
+            running[ref] = chunk
         (ref,), _ = ray.wait(list(running), num_returns=1)
-        chunk, _ = running.pop(ref)
+        chunk = running.pop(ref)
         try:
             outcomes = ray.get(ref)
         except Exception as exc:  # (the worker died, twice: Ray retried once)

@@ -172,11 +172,11 @@ def _answers(
     if len(reports) == len(paths) and status == 0 and not hung:
         return answers
     current = min(last if last >= 0 else len(reports), len(paths) - 1)
-    crashed = Loaded(paths[current], None, chunks[current] + _left_log(cwd), status, hung)
+    crashed = Loaded(paths[current], None, chunks[current] + left_log(cwd), status, hung)
     return [*answers[:current], crashed]
 
 
-def _left_log(cwd: Path) -> str:
+def left_log(cwd: Path) -> str:
     """MuJoCo's log of a file it died on (the probe echoes it only after a load)."""
     log = cwd / MUJOCO_LOG
     if not log.is_file():

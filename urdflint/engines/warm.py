@@ -33,8 +33,8 @@ import time
 from collections.abc import Iterator
 from pathlib import Path
 
-from urdflint.engines.batch import MARKER, Loaded, report_of
-from urdflint.engines.probe import END, MUJOCO_LOG
+from urdflint.engines.batch import MARKER, Loaded, left_log, report_of
+from urdflint.engines.probe import END
 
 RECYCLE = 200  # models per probe process
 IDLE = 60.0  # seconds a probe waits unused before it is stopped
@@ -49,6 +49,7 @@ class Probe:
     def __init__(self, engine: str, memory: int) -> None:
         self.engine, self.memory = engine, memory
         self.proc: subprocess.Popen[bytes] | None = None
+        self.folder: Path | None = None  # the current process's working folder
         self.served = 0  # models sent to the current process
         self.used = time.monotonic()
 
@@ -88,7 +89,7 @@ class Probe:
             )
         except OSError as exc:  # the probe could not be started (missing, not allowed)
             shutil.rmtree(self.folder, ignore_errors=True)
-            self.proc = None
+            self.proc, self.folder = None, None
             return str(exc.strerror or exc)
         self.served = 0
         self._reports: queue.Queue[bytes | None] = queue.Queue()
@@ -151,9 +152,8 @@ class Probe:
         with self._changed:
             text = _unmarked(bytes(self._printed_bytes))
             self._printed_bytes.clear()
-        log = self.folder / MUJOCO_LOG
-        if log.is_file():  # the log of the model it died on (echoed only after a load)
-            text += "\n" + log.read_text(encoding="utf-8", errors="replace")
+        if self.folder is not None:  # MuJoCo's log of the model it died on
+            text += left_log(self.folder)
         status = self.proc.returncode
         self.close()
         return Loaded(path, None, text, status, hung)
@@ -175,9 +175,9 @@ class Probe:
                 with contextlib.suppress(OSError):
                     if stream is not None:
                         stream.close()
-        folder = getattr(self, "folder", None)
-        if folder is not None:
-            shutil.rmtree(folder, ignore_errors=True)
+        if self.folder is not None:
+            shutil.rmtree(self.folder, ignore_errors=True)
+            self.folder = None
 
     def forget(self) -> None:
         """In a forked child: drop the parent's process without touching it (the pipes'
@@ -189,7 +189,7 @@ class Probe:
                     if stream is not None:
                         os.close(stream.fileno())
             proc.returncode = 0  # not ours to wait for
-        self.folder = None  # type: ignore[assignment]
+        self.folder = None
 
 
 def _unmarked(data: bytes) -> str:
